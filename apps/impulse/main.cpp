@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// The impulse command-line tool.
+#include "run_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"impulse: rigid bodies with exact restitution, Coulomb friction and stacking\n"
+                 "(the separated collision / contact time step of Guendelman, Bridson & Fedkiw 2003)"};
+    app.require_subcommand(1);
+
+    impulse::app::RunOptions run;
+    CLI::App* runCommand = app.add_subcommand("run", "Simulate a scene file and optionally write its trajectory");
+    runCommand->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    runCommand->add_option("--dt", run.dt, "Time step in seconds (overrides the scene's dt)")
+        ->check(CLI::PositiveNumber);
+    runCommand->add_option("--duration", run.duration, "Simulated time in seconds (overrides the scene's duration)")
+        ->check(CLI::NonNegativeNumber);
+    runCommand->add_option("--out", run.outPath,
+                           "Write the trajectory CSV here: t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz, "
+                           "dynamic bodies numbered from 0 in file order");
+    runCommand->add_option("--every", run.every, "Write every N-th step (the first and last are always written)")
+        ->check(CLI::PositiveNumber);
+
+    try
+    {
+        app.parse(argc, argv);
+    }
+    catch (const CLI::ParseError& error)
+    {
+        // usage errors exit 2, like a scene that cannot be used
+        const int code = app.exit(error);
+        return code == 0 ? 0 : 2;
+    }
+    return impulse::app::runScene(run);
+}

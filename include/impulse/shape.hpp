@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <impulse/math.hpp>
+
+#include <variant>
+
+namespace impulse
+{
+
+/// Solid sphere centred on the body origin.
+struct Sphere
+{
+    Real radius = 0.5;
+};
+
+/// Solid box centred on the body origin, edges along the body axes.
+struct Box
+{
+    Vec3 halfExtents = Vec3::Constant(0.5);
+};
+
+/// Half-space {p : normal . p <= offset} in the body frame; only static bodies may carry one.
+struct Plane
+{
+    Vec3 normal = Vec3::UnitZ(); ///< unit, pointing out of the solid
+    Real offset = 0.0;
+};
+
+/// The geometry of a body. Body frame: origin at the centre of mass, axes on the principal axes.
+using Shape = std::variant<Sphere, Box, Plane>;
+
+/// Radius of a sphere about the body origin that contains the shape (infinite for a plane).
+Real boundingRadius(const Shape& shape);
+
+/// Volume of the shape (infinite for a plane).
+Real volume(const Shape& shape);
+
+/// Principal moments of inertia of the solid shape with unit mass, body frame.
+Vec3 unitInertia(const Shape& shape);
+
+} // namespace impulse

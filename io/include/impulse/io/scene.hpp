@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <impulse/world.hpp>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impulse::io
+{
+
+/// A scene file that cannot be used. The message names the file, the field's JSON pointer and what
+/// is wrong, e.g. "ball.json: /bodies/1/shape/radius: must be positive, got -0.1".
+class SceneError : public std::runtime_error
+{
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// A loaded scene: the world, the solver options and how long to run.
+struct Scene
+{
+    std::string name;
+    World world;
+    StepOptions options;
+    Real duration = 0.0;                 ///< seconds
+    std::vector<BodyId> dynamicBodies;   ///< in file order; trajectory body k is dynamicBodies[k]
+    std::vector<std::string> bodyNames;  ///< per world body, "" where the file names none
+};
+
+/// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.
+Scene loadScene(const std::filesystem::path& path);
+
+/// Parses scene text; `source` names it in error messages.
+Scene parseScene(const std::string& text, const std::string& source);
+
+} // namespace impulse::io

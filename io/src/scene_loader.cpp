@@ -1,0 +1,467 @@
+// SPDX-License-Identifier: MIT
+// Scene files: JSON read with nlohmann-json, checked field by field so that every problem is
+// reported with the file, the field's JSON pointer and what is wrong. Unknown fields are refused:
+// a misspelt field silently ignored would be a silently wrong simulation.
+#include <impulse/io/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+namespace impulse::io
+{
+namespace
+{
+
+using Json = nlohmann::json;
+
+std::string typeName(const Json& j)
+{
+    if (j.is_number())
+    {
+        return "number";
+    }
+    return j.type_name();
+}
+
+std::string describe(const Json& j)
+{
+    std::string text = j.dump();
+    if (text.size() > 40)
+    {
+        text = text.substr(0, 37) + "...";
+    }
+    return text;
+}
+
+// A JSON value together with where it sits in the file, for error messages.
+class Field
+{
+public:
+    Field(const Json& value, std::string pointer, const std::string& source)
+        : m_value(value), m_pointer(std::move(pointer)), m_source(source)
+    {
+    }
+
+    [[noreturn]] void fail(const std::string& what) const
+    {
+        throw SceneError(m_source + ": " + (m_pointer.empty() ? "/" : m_pointer) + ": " + what);
+    }
+
+    const Json& json() const { return m_value; }
+
+    bool has(const char* key) const { return m_value.is_object() && m_value.contains(key); }
+
+    Field at(const char* key) const
+    {
+        if (!has(key))
+        {
+            Field(m_value, m_pointer + "/" + key, m_source).fail("missing required field");
+        }
+        return Field(m_value.at(key), m_pointer + "/" + key, m_source);
+    }
+
+    Field item(std::size_t index) const
+    {
+        return Field(m_value.at(index), m_pointer + "/" + std::to_string(index), m_source);
+    }
+
+    void requireObject(std::initializer_list<const char*> allowed) const
+    {
+        if (!m_value.is_object())
+        {
+            fail("must be an object, got " + typeName(m_value));
+        }
+        for (const auto& [key, value] : m_value.items())
+        {
+            bool known = false;
+            std::string expected;
+            for (const char* name : allowed)
+            {
+                known = known || key == name;
+                expected += std::string(expected.empty() ? "" : ", ") + name;
+            }
+            if (!known)
+            {
+                Field(value, m_pointer + "/" + key, m_source).fail("unknown field (expected one of: " + expected + ")");
+            }
+        }
+    }
+
+    std::size_t arraySize() const
+    {
+        if (!m_value.is_array())
+        {
+            fail("must be an array, got " + typeName(m_value));
+        }
+        return m_value.size();
+    }
+
+    Real number() const
+    {
+        if (!m_value.is_number())
+        {
+            fail("must be a number, got " + typeName(m_value) + " " + describe(m_value));
+        }
+        const Real value = m_value.get<Real>();
+        if (!std::isfinite(value))
+        {
+            fail("must be a finite number");
+        }
+        return value;
+    }
+
+    Real positive() const
+    {
+        const Real value = number();
+        if (!(value > 0.0))
+        {
+            fail("must be positive, got " + describe(m_value));
+        }
+        return value;
+    }
+
+    Real nonNegative() const
+    {
+        const Real value = number();
+        if (value < 0.0)
+        {
+            fail("must not be negative, got " + describe(m_value));
+        }
+        return value;
+    }
+
+    Real inRange(Real lower, Real upper) const
+    {
+        const Real value = number();
+        if (value < lower || value > upper)
+        {
+            std::ostringstream range;
+            range << "must be in [" << lower << ", " << upper << "], got " << describe(m_value);
+            fail(range.str());
+        }
+        return value;
+    }
+
+    int count(int minimum) const
+    {
+        if (!m_value.is_number_integer())
+        {
+            fail("must be a whole number, got " + describe(m_value));
+        }
+        const auto value = m_value.get<long long>();
+        if (value < minimum || value > 1000000)
+        {
+            fail("must be a whole number from " + std::to_string(minimum) + " to 1000000, got " + describe(m_value));
+        }
+        return static_cast<int>(value);
+    }
+
+    bool boolean() const
+    {
+        if (!m_value.is_boolean())
+        {
+            fail("must be true or false, got " + describe(m_value));
+        }
+        return m_value.get<bool>();
+    }
+
+    std::string text() const
+    {
+        if (!m_value.is_string())
+        {
+            fail("must be a string, got " + typeName(m_value));
+        }
+        return m_value.get<std::string>();
+    }
+
+    Vec3 vec3() const
+    {
+        if (!m_value.is_array() || m_value.size() != 3)
+        {
+            fail("must be an array of 3 numbers, got " + describe(m_value));
+        }
+        return {item(0).number(), item(1).number(), item(2).number()};
+    }
+
+    Vec3 nonZeroVec3() const
+    {
+        const Vec3 value = vec3();
+        if (!(value.norm() > 0.0))
+        {
+            fail("must not be the zero vector");
+        }
+        return value;
+    }
+
+    Vec3 positiveVec3() const
+    {
+        const Vec3 value = vec3();
+        for (std::size_t i = 0; i < 3; ++i)
+        {
+            item(i).positive();
+        }
+        return value;
+    }
+
+    // [w, x, y, z], or {"axis": [x, y, z], "angle_deg": a}
+    Quat orientation() const
+    {
+        if (m_value.is_object())
+        {
+            requireObject({"axis", "angle_deg"});
+            const Vec3 axis = at("axis").nonZeroVec3().normalized();
+            const Real angle = at("angle_deg").number() * std::numbers::pi / 180.0;
+            return Quat(Eigen::AngleAxisd(angle, axis));
+        }
+        if (!m_value.is_array() || m_value.size() != 4)
+        {
+            fail("must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, got " +
+                 describe(m_value));
+        }
+        const Quat q(item(0).number(), item(1).number(), item(2).number(), item(3).number());
+        if (!(q.norm() > 0.0))
+        {
+            fail("must not be the zero quaternion");
+        }
+        return q.normalized();
+    }
+
+private:
+    const Json& m_value;
+    std::string m_pointer;
+    const std::string& m_source;
+};
+
+Shape readShape(const Field& field)
+{
+    field.requireObject({"type", "radius", "half_extents", "normal", "offset"});
+    const std::string type = field.at("type").text();
+    if (type == "sphere")
+    {
+        field.requireObject({"type", "radius"});
+        return Sphere{field.at("radius").positive()};
+    }
+    if (type == "box")
+    {
+        field.requireObject({"type", "half_extents"});
+        return Box{field.at("half_extents").positiveVec3()};
+    }
+    if (type == "plane")
+    {
+        field.requireObject({"type", "normal", "offset"});
+        const Vec3 normal = field.at("normal").nonZeroVec3();
+        const Real offset = field.has("offset") ? field.at("offset").number() : 0.0;
+        return Plane{normal.normalized(), offset / normal.norm()};
+    }
+    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box or plane)");
+}
+
+Material readMaterial(const Field& field)
+{
+    field.requireObject({"restitution", "friction"});
+    return {field.at("restitution").inRange(0.0, 1.0), field.at("friction").nonNegative()};
+}
+
+void readSolver(const Field& field, StepOptions& options)
+{
+    field.requireObject({"collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
+                         "mid_step_restitution", "time_of_impact_geometry"});
+    if (field.has("collision_iterations"))
+    {
+        options.collisionIterations = field.at("collision_iterations").count(0);
+    }
+    if (field.has("contact_iterations"))
+    {
+        options.contactIterations = field.at("contact_iterations").count(1);
+    }
+    if (field.has("pair_iterations"))
+    {
+        options.pairIterations = field.at("pair_iterations").count(1);
+    }
+    if (field.has("contact_thickness"))
+    {
+        options.contactThickness = field.at("contact_thickness").nonNegative();
+    }
+    if (field.has("mid_step_restitution"))
+    {
+        options.midStepRestitution = field.at("mid_step_restitution").boolean();
+    }
+    if (field.has("time_of_impact_geometry"))
+    {
+        options.timeOfImpactGeometry = field.at("time_of_impact_geometry").boolean();
+    }
+}
+
+} // namespace
+
+Scene parseScene(const std::string& text, const std::string& source)
+{
+    Json document;
+    try
+    {
+        document = Json::parse(text);
+    }
+    catch (const Json::parse_error& error)
+    {
+        std::string what = error.what();
+        if (const auto bracket = what.find("] "); bracket != std::string::npos)
+        {
+            what = what.substr(bracket + 2);
+        }
+        throw SceneError(source + ": not valid JSON: " + what);
+    }
+
+    const Field root(document, "", source);
+    root.requireObject({"name", "description", "gravity", "dt", "duration", "solver", "materials", "pairs", "bodies"});
+
+    WorldDef worldDef;
+    if (root.has("gravity"))
+    {
+        worldDef.gravity = root.at("gravity").vec3();
+    }
+    Scene scene{root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}};
+    if (root.has("description"))
+    {
+        root.at("description").text();
+    }
+    scene.options.dt = root.at("dt").positive();
+    scene.duration = root.at("duration").nonNegative();
+    if (root.has("solver"))
+    {
+        readSolver(root.at("solver"), scene.options);
+    }
+
+    // materials: an object of named materials
+    const Field materials = root.at("materials");
+    if (!materials.json().is_object() || materials.json().empty())
+    {
+        materials.fail("must be an object with at least one named material");
+    }
+    std::map<std::string, MaterialId> materialIds;
+    for (const auto& [name, value] : materials.json().items())
+    {
+        materialIds[name] = scene.world.createMaterial(readMaterial(materials.at(name.c_str())));
+    }
+    const auto lookupMaterial = [&](const Field& field) {
+        const std::string name = field.text();
+        const auto found = materialIds.find(name);
+        if (found == materialIds.end())
+        {
+            field.fail("unknown material \"" + name + "\"");
+        }
+        return found->second;
+    };
+
+    if (root.has("pairs"))
+    {
+        const Field pairs = root.at("pairs");
+        for (std::size_t i = 0; i < pairs.arraySize(); ++i)
+        {
+            const Field pair = pairs.item(i);
+            pair.requireObject({"materials", "restitution", "friction"});
+            const Field names = pair.at("materials");
+            if (names.arraySize() != 2)
+            {
+                names.fail("must name exactly two materials");
+            }
+            scene.world.setPairCoefficients(lookupMaterial(names.item(0)), lookupMaterial(names.item(1)),
+                                            {pair.at("restitution").inRange(0.0, 1.0), pair.at("friction").nonNegative()});
+        }
+    }
+
+    const Field bodies = root.at("bodies");
+    const std::size_t bodyCount = bodies.arraySize();
+    if (bodyCount == 0)
+    {
+        bodies.fail("must list at least one body");
+    }
+    for (std::size_t i = 0; i < bodyCount; ++i)
+    {
+        const Field body = bodies.item(i);
+        body.requireObject({"name", "static", "shape", "material", "mass", "density", "position", "orientation",
+                            "velocity", "angular_velocity"});
+        BodyDef def;
+        def.type = body.has("static") && body.at("static").boolean() ? BodyType::Static : BodyType::Dynamic;
+        def.shape = readShape(body.at("shape"));
+        def.material = lookupMaterial(body.at("material"));
+        if (body.has("position"))
+        {
+            def.position = body.at("position").vec3();
+        }
+        if (body.has("orientation"))
+        {
+            def.orientation = body.at("orientation").orientation();
+        }
+        if (def.type == BodyType::Dynamic)
+        {
+            if (std::holds_alternative<Plane>(def.shape))
+            {
+                body.at("shape").fail("a plane must be static (set \"static\": true)");
+            }
+            if (body.has("mass"))
+            {
+                def.mass = body.at("mass").positive();
+            }
+            else if (body.has("density"))
+            {
+                def.density = body.at("density").positive();
+            }
+            else
+            {
+                body.fail("a dynamic body needs \"mass\" or \"density\"");
+            }
+            if (body.has("velocity"))
+            {
+                def.linearVelocity = body.at("velocity").vec3();
+            }
+            if (body.has("angular_velocity"))
+            {
+                def.angularVelocity = body.at("angular_velocity").vec3();
+            }
+        }
+        else
+        {
+            for (const char* field : {"mass", "density", "velocity", "angular_velocity"})
+            {
+                if (body.has(field))
+                {
+                    body.at(field).fail("a static body has no " + std::string(field));
+                }
+            }
+        }
+        try
+        {
+            const BodyId id = scene.world.createBody(def);
+            if (def.type == BodyType::Dynamic)
+            {
+                scene.dynamicBodies.push_back(id);
+            }
+        }
+        catch (const std::invalid_argument& error)
+        {
+            body.fail(error.what());
+        }
+        scene.bodyNames.push_back(body.has("name") ? body.at("name").text() : std::string());
+    }
+    return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+    {
+        throw SceneError(path.string() + ": cannot open the file");
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), path.string());
+}
+
+} // namespace impulse::io

@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: MIT
+// The public World API over WorldImpl: body creation with validation, queries, energies, hashing.
+#include "dynamics/integrate.hpp"
+#include "world/world_impl.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace impulse
+{
+namespace
+{
+
+bool finite(const Vec3& v)
+{
+    return v.allFinite();
+}
+
+void require(bool condition, const std::string& field, const std::string& what)
+{
+    if (!condition)
+    {
+        throw std::invalid_argument(field + ": " + what);
+    }
+}
+
+void validateShape(const Shape& shape)
+{
+    if (const auto* sphere = std::get_if<Sphere>(&shape))
+    {
+        require(std::isfinite(sphere->radius) && sphere->radius > 0.0, "radius", "must be a positive finite number");
+    }
+    else if (const auto* box = std::get_if<Box>(&shape))
+    {
+        require(finite(box->halfExtents) && (box->halfExtents.array() > 0.0).all(), "half_extents",
+                "must be three positive finite numbers");
+    }
+    else if (const auto* plane = std::get_if<Plane>(&shape))
+    {
+        require(finite(plane->normal) && plane->normal.norm() > 0.0, "normal", "must be a finite non-zero vector");
+        require(std::isfinite(plane->offset), "offset", "must be finite");
+    }
+}
+
+} // namespace
+
+PairCoefficients combineMaterials(const Material& a, const Material& b)
+{
+    return {std::max(a.restitution, b.restitution), std::sqrt(a.friction * b.friction)};
+}
+
+PairCoefficients WorldImpl::coefficients(MaterialId a, MaterialId b) const
+{
+    const auto key = std::minmax(a.index, b.index);
+    if (const auto found = pairOverrides.find({key.first, key.second}); found != pairOverrides.end())
+    {
+        return found->second;
+    }
+    return combineMaterials(materials[a.index], materials[b.index]);
+}
+
+World::World(const WorldDef& def) : m_impl(std::make_unique<WorldImpl>())
+{
+    if (!def.gravity.allFinite())
+    {
+        throw std::invalid_argument("gravity: must be finite");
+    }
+    m_impl->def = def;
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+MaterialId World::createMaterial(const Material& material)
+{
+    require(std::isfinite(material.restitution) && material.restitution >= 0.0 && material.restitution <= 1.0,
+            "restitution", "must be in [0, 1]");
+    require(std::isfinite(material.friction) && material.friction >= 0.0, "friction",
+            "must be a non-negative finite number");
+    m_impl->materials.push_back(material);
+    return {static_cast<std::uint32_t>(m_impl->materials.size() - 1)};
+}
+
+void World::setPairCoefficients(MaterialId a, MaterialId b, const PairCoefficients& coefficients)
+{
+    require(a.index < m_impl->materials.size() && b.index < m_impl->materials.size(), "materials",
+            "unknown material");
+    require(std::isfinite(coefficients.restitution) && coefficients.restitution >= 0.0 &&
+                coefficients.restitution <= 1.0,
+            "restitution", "must be in [0, 1]");
+    require(std::isfinite(coefficients.friction) && coefficients.friction >= 0.0, "friction",
+            "must be a non-negative finite number");
+    const auto key = std::minmax(a.index, b.index);
+    m_impl->pairOverrides[{key.first, key.second}] = coefficients;
+}
+
+PairCoefficients World::pairCoefficients(MaterialId a, MaterialId b) const
+{
+    return m_impl->coefficients(a, b);
+}
+
+BodyId World::createBody(const BodyDef& def)
+{
+    validateShape(def.shape);
+    require(def.material.index < m_impl->materials.size(), "material", "unknown material");
+    require(finite(def.position), "position", "must be finite");
+    require(finite(def.linearVelocity), "velocity", "must be finite");
+    require(finite(def.angularVelocity), "angular_velocity", "must be finite");
+    require(def.orientation.coeffs().allFinite() && def.orientation.norm() > 0.0, "orientation",
+            "must be a finite non-zero quaternion");
+
+    RigidBody body;
+    body.shape = def.shape;
+    body.material = def.material;
+    body.dynamic = def.type == BodyType::Dynamic;
+    body.position = def.position;
+    body.orientation = def.orientation.normalized();
+    body.rotation = body.orientation.toRotationMatrix();
+    if (auto* plane = std::get_if<Plane>(&body.shape))
+    {
+        require(!body.dynamic, "static", "a plane must be static");
+        const Real length = plane->normal.norm();
+        plane->normal /= length;
+        plane->offset /= length;
+    }
+    body.boundingRadius = boundingRadius(body.shape);
+
+    if (body.dynamic)
+    {
+        require(std::isfinite(def.mass) && def.mass >= 0.0, "mass", "must be a positive finite number");
+        require(std::isfinite(def.density) && def.density >= 0.0, "density", "must be a positive finite number");
+        require(def.mass > 0.0 || def.density > 0.0, "mass", "a dynamic body needs a positive mass or density");
+        body.mass = def.mass > 0.0 ? def.mass : def.density * volume(body.shape);
+        body.invMass = 1.0 / body.mass;
+        body.principalInertia = body.mass * unitInertia(body.shape);
+        body.invPrincipalInertia = body.principalInertia.cwiseInverse();
+        // L = I w in the world frame
+        body.angularMomentum = body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() *
+                               def.angularVelocity;
+        body.linearVelocity = def.linearVelocity;
+    }
+    else
+    {
+        require(def.linearVelocity.isZero(0.0) && def.angularVelocity.isZero(0.0), "velocity",
+                "a static body cannot move");
+        body.mass = std::numeric_limits<Real>::infinity();
+    }
+    updateDerivedQuantities(body);
+    body.predicted = body.pose();
+    m_impl->bodies.push_back(body);
+    return {static_cast<std::uint32_t>(m_impl->bodies.size() - 1)};
+}
+
+void World::step(const StepOptions& options)
+{
+    if (!(options.dt > 0.0) || !std::isfinite(options.dt))
+    {
+        throw std::invalid_argument("dt: must be a positive finite number");
+    }
+    if (options.collisionIterations < 0 || options.contactIterations < 1 || options.pairIterations < 1)
+    {
+        throw std::invalid_argument("iterations: collision >= 0, contact >= 1 and pair >= 1 required");
+    }
+    m_impl->step(options);
+}
+
+std::uint32_t World::bodyCount() const
+{
+    return static_cast<std::uint32_t>(m_impl->bodies.size());
+}
+
+bool World::isDynamic(BodyId body) const
+{
+    return m_impl->bodies.at(body.index).dynamic;
+}
+
+BodyState World::state(BodyId id) const
+{
+    const RigidBody& body = m_impl->bodies.at(id.index);
+    return {body.position, body.orientation, body.linearVelocity, body.angularVelocity, body.angularMomentum};
+}
+
+Real World::mass(BodyId body) const
+{
+    return m_impl->bodies.at(body.index).mass;
+}
+
+Vec3 World::principalInertia(BodyId body) const
+{
+    return m_impl->bodies.at(body.index).principalInertia;
+}
+
+const Shape& World::shape(BodyId body) const
+{
+    return m_impl->bodies.at(body.index).shape;
+}
+
+Vec3 World::gravity() const
+{
+    return m_impl->def.gravity;
+}
+
+Real World::time() const
+{
+    return m_impl->time;
+}
+
+Real World::kineticEnergy() const
+{
+    Real energy = 0.0;
+    for (const RigidBody& body : m_impl->bodies)
+    {
+        if (body.dynamic)
+        {
+            energy += 0.5 * body.mass * body.linearVelocity.squaredNorm() +
+                      0.5 * body.angularVelocity.dot(body.angularMomentum);
+        }
+    }
+    return energy;
+}
+
+Real World::potentialEnergy() const
+{
+    Real energy = 0.0;
+    for (const RigidBody& body : m_impl->bodies)
+    {
+        if (body.dynamic)
+        {
+            energy -= body.mass * m_impl->def.gravity.dot(body.position);
+        }
+    }
+    return energy;
+}
+
+Vec3 World::linearMomentum() const
+{
+    Vec3 momentum = Vec3::Zero();
+    for (const RigidBody& body : m_impl->bodies)
+    {
+        if (body.dynamic)
+        {
+            momentum += body.mass * body.linearVelocity;
+        }
+    }
+    return momentum;
+}
+
+const StepStats& World::lastStepStats() const
+{
+    return m_impl->stats;
+}
+
+std::uint64_t World::stateHash() const
+{
+    // FNV-1a over the bits of every dynamic body's primary state
+    std::uint64_t hash = 1469598103934665603ULL;
+    const auto mix = [&](const double* values, int count) {
+        for (int i = 0; i < count; ++i)
+        {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, &values[i], sizeof bits);
+            for (int byte = 0; byte < 8; ++byte)
+            {
+                hash ^= (bits >> (8 * byte)) & 0xffU;
+                hash *= 1099511628211ULL;
+            }
+        }
+    };
+    for (const RigidBody& body : m_impl->bodies)
+    {
+        if (body.dynamic)
+        {
+            mix(body.position.data(), 3);
+            mix(body.orientation.coeffs().data(), 4);
+            mix(body.linearVelocity.data(), 3);
+            mix(body.angularMomentum.data(), 3);
+        }
+    }
+    return hash;
+}
+
+} // namespace impulse
