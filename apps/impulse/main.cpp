@@ -12,9 +12,7 @@ int main(int argc, char** argv)
 
     impulse::app::RunOptions run;
     CLI::App* runCommand = app.add_subcommand("run", "Simulate a scene file and optionally write its trajectory");
-    runCommand->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    runCommand->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)")->required();
     runCommand->add_option("--dt", run.dt, "Time step in seconds (overrides the scene's dt)")
         ->check(CLI::PositiveNumber);
     runCommand->add_option("--duration", run.duration, "Simulated time in seconds (overrides the scene's duration)")
@@ -24,6 +22,16 @@ int main(int argc, char** argv)
                            "dynamic bodies numbered from 0 in file order");
     runCommand->add_option("--every", run.every, "Write every N-th step (the first and last are always written)")
         ->check(CLI::PositiveNumber);
+    runCommand
+        ->add_option("--scheme", run.scheme,
+                     "Order of the step: guendelman (collision, velocity, contact, position; the default) or "
+                     "traditional (velocity and position, then collisions and contacts)")
+        ->check(CLI::IsMember({"guendelman", "traditional"}));
+    runCommand
+        ->add_option("--restitution-threshold", run.restitutionThreshold,
+                     "Resolve collisions approaching slower than this speed (m/s) with restitution 0; "
+                     "default none")
+        ->check(CLI::NonNegativeNumber);
 
     try
     {

@@ -51,8 +51,35 @@ int runScene(const RunOptions& options)
     {
         scene.duration = *options.duration;
     }
+    if (options.scheme)
+    {
+        scene.options.scheme = *options.scheme == "traditional" ? Scheme::Traditional : Scheme::Guendelman;
+    }
+    if (options.restitutionThreshold)
+    {
+        scene.options.restitutionThreshold = *options.restitutionThreshold;
+    }
     const double dt = scene.options.dt;
+    if (!(std::isfinite(dt) && dt > 0.0) || !(std::isfinite(scene.duration) && scene.duration >= 0.0))
+    {
+        std::cerr << "impulse: --dt must be positive and --duration non-negative finite numbers\n";
+        return 2;
+    }
+    constexpr double maxSteps = 1e12;
+    if (!(scene.duration / dt <= maxSteps))
+    {
+        std::cerr << "impulse: " << options.scenePath << ": duration / dt is more than 1e12 steps\n";
+        return 2;
+    }
     const auto steps = static_cast<long long>(std::llround(scene.duration / dt));
+
+    if (!stateIsFinite(scene.world, scene.dynamicBodies) ||
+        !std::isfinite(scene.world.kineticEnergy() + scene.world.potentialEnergy()))
+    {
+        std::cerr << "impulse: " << options.scenePath
+                  << ": the initial state has non-finite energy (velocities or positions too large)\n";
+        return 2;
+    }
 
     std::ofstream file;
     std::optional<io::TrajectoryWriter> writer;
@@ -74,6 +101,13 @@ int runScene(const RunOptions& options)
     for (long long step = 1; step <= steps; ++step)
     {
         scene.world.step(scene.options);
+        // stop before a non-finite state reaches the file (cheap: a few comparisons per body)
+        if (!stateIsFinite(scene.world, scene.dynamicBodies))
+        {
+            std::cerr << "impulse: " << options.scenePath << ": the simulation diverged (non-finite state) at t = "
+                      << static_cast<double>(step) * dt << " s; try a smaller --dt\n";
+            return 1;
+        }
         if (writer && (step % options.every == 0 || step == steps))
         {
             writer->writeSample(static_cast<double>(step) * dt, scene.world, scene.dynamicBodies);
@@ -102,11 +136,6 @@ int runScene(const RunOptions& options)
     if (writer)
     {
         std::printf("trajectory  %s\n", options.outPath.c_str());
-    }
-    if (!stateIsFinite(scene.world, scene.dynamicBodies))
-    {
-        std::cerr << "impulse: the simulation diverged (non-finite state); try a smaller --dt\n";
-        return 1;
     }
     return 0;
 }

@@ -15,6 +15,8 @@ struct RunOptions
     std::optional<double> duration;
     std::string outPath; ///< empty: no trajectory file
     long long every = 1; ///< write every N-th step
+    std::optional<std::string> scheme;            ///< "guendelman" or "traditional"
+    std::optional<double> restitutionThreshold;   ///< m/s
 };
 
 /// Runs a scene and prints a summary. Returns the process exit code: 0 on success, 2 for a scene

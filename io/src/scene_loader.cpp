@@ -31,6 +31,15 @@ std::string typeName(const Json& j)
 
 std::string describe(const Json& j)
 {
+    // containers by type and size only: quoting them could recurse through any depth of nesting
+    if (j.is_array())
+    {
+        return "an array of " + std::to_string(j.size());
+    }
+    if (j.is_object())
+    {
+        return "an object";
+    }
     std::string text = j.dump();
     if (text.size() > 40)
     {
@@ -215,7 +224,7 @@ public:
         if (m_value.is_object())
         {
             requireObject({"axis", "angle_deg"});
-            const Vec3 axis = at("axis").nonZeroVec3().normalized();
+            const Vec3 axis = at("axis").nonZeroVec3().stableNormalized();
             const Real angle = at("angle_deg").number() * std::numbers::pi / 180.0;
             return Quat(Eigen::AngleAxisd(angle, axis));
         }
@@ -224,12 +233,13 @@ public:
             fail("must be a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle_deg\": a}, got " +
                  describe(m_value));
         }
-        const Quat q(item(0).number(), item(1).number(), item(2).number(), item(3).number());
-        if (!(q.norm() > 0.0))
+        const Eigen::Vector4d wxyz(item(0).number(), item(1).number(), item(2).number(), item(3).number());
+        if (!(wxyz.stableNorm() > 0.0))
         {
             fail("must not be the zero quaternion");
         }
-        return q.normalized();
+        const Eigen::Vector4d unit = wxyz.stableNormalized();
+        return Quat(unit[0], unit[1], unit[2], unit[3]);
     }
 
 private:
@@ -257,7 +267,7 @@ Shape readShape(const Field& field)
         field.requireObject({"type", "normal", "offset"});
         const Vec3 normal = field.at("normal").nonZeroVec3();
         const Real offset = field.has("offset") ? field.at("offset").number() : 0.0;
-        return Plane{normal.normalized(), offset / normal.norm()};
+        return Plane{normal.stableNormalized(), offset / normal.stableNorm()};
     }
     field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box or plane)");
 }
@@ -270,8 +280,29 @@ Material readMaterial(const Field& field)
 
 void readSolver(const Field& field, StepOptions& options)
 {
-    field.requireObject({"collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
-                         "mid_step_restitution", "time_of_impact_geometry"});
+    field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations",
+                         "contact_thickness", "mid_step_restitution", "time_of_impact_geometry",
+                         "restitution_threshold"});
+    if (field.has("scheme"))
+    {
+        const std::string scheme = field.at("scheme").text();
+        if (scheme == "guendelman")
+        {
+            options.scheme = Scheme::Guendelman;
+        }
+        else if (scheme == "traditional")
+        {
+            options.scheme = Scheme::Traditional;
+        }
+        else
+        {
+            field.at("scheme").fail("unknown scheme \"" + scheme + "\" (expected guendelman or traditional)");
+        }
+    }
+    if (field.has("restitution_threshold"))
+    {
+        options.restitutionThreshold = field.at("restitution_threshold").nonNegative();
+    }
     if (field.has("collision_iterations"))
     {
         options.collisionIterations = field.at("collision_iterations").count(0);
@@ -307,7 +338,7 @@ Scene parseScene(const std::string& text, const std::string& source)
     {
         document = Json::parse(text);
     }
-    catch (const Json::parse_error& error)
+    catch (const Json::exception& error) // parse_error, and out_of_range for numbers such as 1e999
     {
         std::string what = error.what();
         if (const auto bracket = what.find("] "); bracket != std::string::npos)
@@ -404,15 +435,15 @@ Scene parseScene(const std::string& text, const std::string& source)
             {
                 body.at("shape").fail("a plane must be static (set \"static\": true)");
             }
+            if (body.has("density"))
+            {
+                def.density = body.at("density").positive();
+            }
             if (body.has("mass"))
             {
                 def.mass = body.at("mass").positive();
             }
-            else if (body.has("density"))
-            {
-                def.density = body.at("density").positive();
-            }
-            else
+            else if (!body.has("density"))
             {
                 body.fail("a dynamic body needs \"mass\" or \"density\"");
             }
@@ -445,7 +476,20 @@ Scene parseScene(const std::string& text, const std::string& source)
         }
         catch (const std::invalid_argument& error)
         {
-            body.fail(error.what());
+            // the World names the field ("radius: ..."); report it at that field's pointer
+            const std::string what = error.what();
+            const auto colon = what.find(": ");
+            const std::string name = colon == std::string::npos ? std::string() : what.substr(0, colon);
+            const std::string reason = colon == std::string::npos ? what : what.substr(colon + 2);
+            if (body.has("shape") && body.at("shape").has(name.c_str()))
+            {
+                body.at("shape").at(name.c_str()).fail(reason);
+            }
+            if (!name.empty() && body.has(name.c_str()))
+            {
+                body.at(name.c_str()).fail(reason);
+            }
+            body.fail(what);
         }
         scene.bodyNames.push_back(body.has("name") ? body.at("name").text() : std::string());
     }

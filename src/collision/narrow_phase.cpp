@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: MIT
 // The shape-pair table. Each routine reports sample points of one body inside (or within
 // `threshold` of) the other, GBF03 sec. 3: a point p of A, phi = phi_B(p), normal = grad phi_B(p).
-// Analytic shapes use their exact signed distance; a box also samples each edge at its point
-// deepest inside the other box, which vertex sampling alone misses when edges cross.
+// Analytic shapes use their exact signed distance. Box against box uses the separating-axis test
+// with face clipping (box_box.cpp): sampling corners against a box's distance is degenerate for
+// boxes stacked flush, whose corners all lie on the other box's edges.
 //
-//            sphere        box               plane
-//   sphere   centre line   closest point     deepest point
-//   box      (swapped)     vertices + edges  vertices
-//   plane    (swapped)     (swapped)         never (both static)
+//            sphere        box                      plane
+//   sphere   centre line   closest point            deepest point
+//   box      (swapped)     separating axis + clip   corners
+//   plane    (swapped)     (swapped)                never (both static)
 #include "collision/narrow_phase.hpp"
 
+#include "collision/box_box.hpp"
 #include "geometry/signed_distance.hpp"
 
 #include <array>
@@ -42,10 +44,6 @@ std::array<Vec3, 8> boxCorners(const Box& box, const Pose& pose)
     }
     return corners;
 }
-
-// corners differ in exactly one bit along an edge
-constexpr std::array<std::array<int, 2>, 12> kBoxEdges{{{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                                        {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
 
 void sphereSphere(const Sphere& a, const Pose& poseA, const Sphere& b, const Pose& poseB, Real threshold,
                   std::vector<ContactPoint>& out)
@@ -99,61 +97,6 @@ void boxPlane(const Box& a, const Pose& poseA, const Plane& b, const Pose& poseB
     }
 }
 
-// Points of box `a` inside box `b`: its corners, then each edge's deepest interior point where that
-// is deeper than both ends. `sign` is +1 when a is the pair's A and -1 when it is B.
-void boxPointsInBox(const Box& a, const Pose& poseA, const Box& b, const Pose& poseB, Real threshold, Real sign,
-                    std::vector<ContactPoint>& out)
-{
-    const std::array<Vec3, 8> corners = boxCorners(a, poseA);
-    std::array<Vec3, 8> cornersInB;
-    std::array<Real, 8> cornerPhi{};
-    for (std::size_t i = 0; i < 8; ++i)
-    {
-        cornersInB[i] = poseB.toLocal(corners[i]);
-        const DistanceSample sample = boxDistance(b.halfExtents, cornersInB[i]);
-        cornerPhi[i] = sample.phi;
-        if (sample.phi < threshold)
-        {
-            out.push_back({corners[i], sign * (poseB.rotation * sample.gradient), sample.phi});
-        }
-    }
-    const Real margin = 1e-9 * b.halfExtents.maxCoeff();
-    for (const auto& edge : kBoxEdges)
-    {
-        const auto i = static_cast<std::size_t>(edge[0]);
-        const auto j = static_cast<std::size_t>(edge[1]);
-        const Real length = (corners[j] - corners[i]).norm();
-        // phi is 1-Lipschitz: an edge whose ends are this far out cannot reach the box
-        if (cornerPhi[i] + cornerPhi[j] > length + 2.0 * threshold)
-        {
-            continue;
-        }
-        const Real t = deepestSegmentParameterInBox(b.halfExtents, cornersInB[i], cornersInB[j]);
-        if (t <= 0.0 || t >= 1.0)
-        {
-            continue;
-        }
-        const Vec3 local = cornersInB[i] + t * (cornersInB[j] - cornersInB[i]);
-        const DistanceSample sample = boxDistance(b.halfExtents, local);
-        if (sample.phi < threshold && sample.phi < std::min(cornerPhi[i], cornerPhi[j]) - margin)
-        {
-            out.push_back({poseB.toWorld(local), sign * (poseB.rotation * sample.gradient), sample.phi});
-        }
-    }
-}
-
-void boxBox(const Box& a, const Pose& poseA, const Box& b, const Pose& poseB, Real threshold,
-            std::vector<ContactPoint>& out)
-{
-    const Real reach = a.halfExtents.norm() + b.halfExtents.norm() + threshold;
-    if ((poseA.position - poseB.position).squaredNorm() > reach * reach)
-    {
-        return;
-    }
-    boxPointsInBox(a, poseA, b, poseB, threshold, 1.0, out);
-    boxPointsInBox(b, poseB, a, poseA, threshold, -1.0, out);
-}
-
 // Runs `collide(b, a)` and re-expresses its points for the pair (a, b).
 template <class Collide>
 void swapped(Collide collide, std::vector<ContactPoint>& out)
@@ -194,7 +137,7 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
         }
         if (const auto* bb = std::get_if<Box>(&b))
         {
-            return boxBox(*ba, poseA, *bb, poseB, threshold, out);
+            return collideBoxBox(*ba, poseA, *bb, poseB, threshold, out);
         }
         if (const auto* pb = std::get_if<Plane>(&b))
         {

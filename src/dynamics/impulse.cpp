@@ -18,16 +18,17 @@ Mat3 cross(const Vec3& r)
     return m;
 }
 
-Mat3 bodyMatrix(const ContactBody& body)
-{
-    const Mat3 r = cross(body.leverArm);
-    return body.invMass * Mat3::Identity() - r * body.invInertiaWorld * r;
-}
 } // namespace
+
+Mat3 couplingMatrix(Real invMass, const Mat3& invInertiaWorld, const Vec3& ri, const Vec3& rk)
+{
+    return invMass * Mat3::Identity() - cross(ri) * invInertiaWorld * cross(rk);
+}
 
 Mat3 collisionMatrix(const ContactBody& a, const ContactBody& b)
 {
-    return bodyMatrix(a) + bodyMatrix(b);
+    return couplingMatrix(a.invMass, a.invInertiaWorld, a.leverArm, a.leverArm) +
+           couplingMatrix(b.invMass, b.invInertiaWorld, b.leverArm, b.leverArm);
 }
 
 Vec3 computeImpulse(const Vec3& uRel, const Vec3& n, const Mat3& K, Real eps, Real mu)

@@ -14,6 +14,10 @@ struct ContactBody
     Vec3 leverArm = Vec3::Zero(); ///< contact point minus centre of mass
 };
 
+/// The block of the collision matrix that maps an impulse at lever arm rk to a velocity change at
+/// lever arm ri of one body: m^-1 1 - [ri]x I^-1 [rk]x (zero for a static or frozen body).
+Mat3 couplingMatrix(Real invMass, const Mat3& invInertiaWorld, const Vec3& ri, const Vec3& rk);
+
 /// K = K_A + K_B with K_i = m_i^-1 1 - [r_i]x I_i^-1 [r_i]x: an impulse j at the contact changes the
 /// relative velocity there by K j (GBF03 sec. 6; report eq. 5).
 Mat3 collisionMatrix(const ContactBody& a, const ContactBody& b);

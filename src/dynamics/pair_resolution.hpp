@@ -9,22 +9,22 @@
 namespace impulse
 {
 
-enum class Pass
-{
-    Collision, ///< elastic, before the velocity update; predicts with v + dt a, responds to v
-    Contact,   ///< inelastic, after the velocity update; predicts and responds with v
-};
-
 /// What a pass needs to know to resolve pairs.
 struct PassSettings
 {
-    Pass pass = Pass::Contact;
     Real dt = 0.0;
     Vec3 gravity = Vec3::Zero();
+    /// How far ahead bodies are predicted: dt in the Guendelman order; 0 in the traditional order,
+    /// which detects at the poses it has already moved to.
+    Real lookahead = 0.0;
+    /// Predict with v + dt a instead of v: the collision pass of the Guendelman order, which runs
+    /// before the velocity update. Enables the two refinements below.
+    bool predictWithAcceleration = false;
+    bool midStepRestitution = false;
+    bool timeOfImpactGeometry = false;
     Real threshold = 0.0;        ///< points with phi below this count as touching
     int pairIterations = 20;     ///< cap on impulses per pair per sweep
-    bool midStepRestitution = true;
-    bool timeOfImpactGeometry = true;
+    Real restitutionThreshold = 0.0; ///< approach speeds below this get restitution 0
 };
 
 /// Places body.predicted at the end of the step under the velocities this pass uses.

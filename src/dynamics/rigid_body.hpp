@@ -40,6 +40,11 @@ struct RigidBody
 
     // per-step scratch
     Pose predicted; ///< pose at the end of the step under the velocities of the current pass
+    int level = -1;       ///< contact-graph level this step; -1 for static bodies
+    bool frozen = false;  ///< treated as infinite mass during shock propagation
+
+    /// Static, or frozen by shock propagation: impulses do not move it.
+    bool immovable() const { return !dynamic || frozen; }
 
     Pose pose() const { return {position, orientation, rotation}; }
     /// Velocity of the material point at world point p, with the body placed at `at`.

@@ -40,7 +40,8 @@ void validateShape(const Shape& shape)
     }
     else if (const auto* plane = std::get_if<Plane>(&shape))
     {
-        require(finite(plane->normal) && plane->normal.norm() > 0.0, "normal", "must be a finite non-zero vector");
+        require(finite(plane->normal) && plane->normal.stableNorm() > 0.0, "normal",
+                "must be a finite non-zero vector");
         require(std::isfinite(plane->offset), "offset", "must be finite");
     }
 }
@@ -110,7 +111,7 @@ BodyId World::createBody(const BodyDef& def)
     require(finite(def.position), "position", "must be finite");
     require(finite(def.linearVelocity), "velocity", "must be finite");
     require(finite(def.angularVelocity), "angular_velocity", "must be finite");
-    require(def.orientation.coeffs().allFinite() && def.orientation.norm() > 0.0, "orientation",
+    require(def.orientation.coeffs().allFinite() && def.orientation.coeffs().stableNorm() > 0.0, "orientation",
             "must be a finite non-zero quaternion");
 
     RigidBody body;
@@ -118,12 +119,12 @@ BodyId World::createBody(const BodyDef& def)
     body.material = def.material;
     body.dynamic = def.type == BodyType::Dynamic;
     body.position = def.position;
-    body.orientation = def.orientation.normalized();
+    body.orientation = Quat(def.orientation.coeffs().stableNormalized());
     body.rotation = body.orientation.toRotationMatrix();
     if (auto* plane = std::get_if<Plane>(&body.shape))
     {
         require(!body.dynamic, "static", "a plane must be static");
-        const Real length = plane->normal.norm();
+        const Real length = plane->normal.stableNorm();
         plane->normal /= length;
         plane->offset /= length;
     }
@@ -136,8 +137,12 @@ BodyId World::createBody(const BodyDef& def)
         require(def.mass > 0.0 || def.density > 0.0, "mass", "a dynamic body needs a positive mass or density");
         body.mass = def.mass > 0.0 ? def.mass : def.density * volume(body.shape);
         body.invMass = 1.0 / body.mass;
+        require(std::isfinite(body.mass) && std::isfinite(body.invMass) && body.mass > 0.0,
+                def.mass > 0.0 ? "mass" : "density", "gives a mass that is not a positive finite number");
         body.principalInertia = body.mass * unitInertia(body.shape);
         body.invPrincipalInertia = body.principalInertia.cwiseInverse();
+        require(body.principalInertia.allFinite() && body.invPrincipalInertia.allFinite(),
+                def.mass > 0.0 ? "mass" : "density", "gives an inertia that is not a positive finite number");
         // L = I w in the world frame
         body.angularMomentum = body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() *
                                def.angularVelocity;
@@ -160,6 +165,10 @@ void World::step(const StepOptions& options)
     if (!(options.dt > 0.0) || !std::isfinite(options.dt))
     {
         throw std::invalid_argument("dt: must be a positive finite number");
+    }
+    if (!(options.restitutionThreshold >= 0.0) || !std::isfinite(options.restitutionThreshold))
+    {
+        throw std::invalid_argument("restitution_threshold: must be a non-negative finite speed");
     }
     if (options.collisionIterations < 0 || options.contactIterations < 1 || options.pairIterations < 1)
     {

@@ -250,7 +250,7 @@ Real sampledMinimum(const Vec3& half, const Vec3& a, const Vec3& b, int samples)
 // true minimum lies within Lipschitz * spacing / 2 below the sampled one.
 void expectDeepestMatchesSampling(const Vec3& half, const Vec3& a, const Vec3& b)
 {
-    constexpr int kSamples = 200001;
+    constexpr int kSamples = 20001;
     const Real t = deepestSegmentParameterInBox(half, a, b);
     ASSERT_GE(t, 0.0);
     ASSERT_LE(t, 1.0);

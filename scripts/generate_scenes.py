@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Writes the generated reference scenes (stacks, pyramid, stacking regressions) into scenes/.
+
+Run from anywhere: python3 scripts/generate_scenes.py. The hand-written scenes 1-8 are not touched.
+"""
+import json
+import pathlib
+import re
+
+SCENES = pathlib.Path(__file__).resolve().parent.parent / "scenes"
+GROUND = {"name": "ground", "static": True, "shape": {"type": "plane", "normal": [0, 0, 1], "offset": 0},
+          "material": "default"}
+
+
+def write(name, description, bodies, duration, materials=None, dt=0.001):
+    scene = {"name": name, "description": description, "gravity": [0, 0, -9.81], "dt": dt, "duration": duration,
+             "materials": materials or {"default": {"restitution": 0.0, "friction": 0.5}}, "bodies": bodies}
+    text = json.dumps(scene, indent=2)
+    # keep short numeric arrays on one line
+    text = re.sub(r"\[\s*([-0-9.e, \n]+?)\s*\]", lambda m: "[" + ", ".join(x.strip() for x in m.group(1).split(",")) + "]", text)
+    (SCENES / f"{name}.json").write_text(text + "\n")
+
+
+def box(name, half, position, mass=None, density=None, static=False, material="default"):
+    body = {"name": name}
+    if static:
+        body["static"] = True
+    body["shape"] = {"type": "box", "half_extents": [round(h, 12) for h in half]}
+    if mass is not None:
+        body["mass"] = mass
+    if density is not None:
+        body["density"] = density
+    body["position"] = [round(p, 12) for p in position]
+    body["material"] = material
+    return body
+
+
+def box_stack(n, duration=20.0):
+    cubes = [box(f"cube{k}", [0.1] * 3, [0, 0, 0.1 + 0.2 * k], mass=1.0) for k in range(n)]
+    write(f"box_stack_{n}", f"Reference scene 9: {n} cubes of side 0.2 stacked exactly on the ground; nothing may move.",
+          [GROUND] + cubes, duration)
+
+
+def pyramid(bottom=20):
+    cubes = []
+    for row in range(bottom):
+        count = bottom - row
+        for i in range(count):
+            x = (i - (count - 1) / 2) * 0.21
+            cubes.append(box(f"r{row}c{i}", [0.1] * 3, [x, 0, 0.1 + 0.2 * row], mass=1.0))
+    write("pyramid", f"Reference scene 10: a 2-D pyramid of {len(cubes)} cubes of side 0.2, bottom row of {bottom}, "
+          "gaps of 0.01 in a row; it must stand.", [GROUND] + cubes, 10.0)
+
+
+def heavy_on_light():
+    masses = [1, 10, 100, 1, 1000]
+    cubes = [box(f"cube{k}_{m}kg", [0.1] * 3, [0, 0, 0.1 + 0.2 * k], mass=float(m)) for k, m in enumerate(masses)]
+    write("heavy_on_light", "Five cubes of side 0.2 with masses 1, 10, 100, 1, 1000 kg from the bottom up; the heavy "
+          "cubes must not sink through the light ones.", [GROUND] + cubes, 10.0)
+
+
+def lintel():
+    bodies = [GROUND]
+    bodies += [box(f"left{k}", [0.1, 0.1, 0.1], [-0.4, 0, 0.1 + 0.2 * k], density=500.0) for k in range(2)]
+    bodies += [box(f"right{k}", [0.1, 0.1, 0.05], [0.4, 0, 0.05 + 0.1 * k], density=500.0) for k in range(4)]
+    bodies.append(box("lintel", [0.5, 0.1, 0.05], [0, 0, 0.45], density=500.0))
+    write("lintel", "A 1.0 x 0.2 x 0.1 lintel across two stacks of equal height: 2 cubes on the left, 4 half-height "
+          "boxes on the right. It must stand; breadth-first levels would deadlock here.", bodies, 10.0)
+
+
+def seesaw():
+    bodies = [GROUND,
+              box("pivot", [0.05, 0.2, 0.15], [0, 0, 0.15], static=True),
+              box("plank", [1.0, 0.15, 0.025], [0, 0, 0.325], mass=10.0),
+              box("light", [0.1, 0.1, 0.1], [-0.85, 0, 0.45], mass=5.0),
+              box("heavy", [0.1, 0.1, 0.1], [0.85, 0, 1.45], mass=20.0)]
+    write("seesaw", "A 10 kg plank on a static pivot, a 5 kg cube at rest on one end and a 20 kg cube dropped from "
+          "1 m onto the other: the heavy side goes down and the light cube is thrown up.", bodies, 3.0)
+
+
+if __name__ == "__main__":
+    box_stack(10)
+    box_stack(50)
+    pyramid()
+    heavy_on_light()
+    lintel()
+    seesaw()

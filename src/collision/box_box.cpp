@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+#include "collision/box_box.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace impulse
+{
+namespace
+{
+
+struct OrientedBox
+{
+    Vec3 centre;
+    Mat3 axes; ///< columns: the box's unit axes, world frame
+    Vec3 half;
+};
+
+// Half the box's extent projected on a unit axis.
+Real projectedRadius(const OrientedBox& box, const Vec3& axis)
+{
+    return box.half.x() * std::abs(box.axes.col(0).dot(axis)) + box.half.y() * std::abs(box.axes.col(1).dot(axis)) +
+           box.half.z() * std::abs(box.axes.col(2).dot(axis));
+}
+
+// Separation of the boxes along a unit axis: positive apart, negative overlapping.
+Real separation(const OrientedBox& a, const OrientedBox& b, const Vec3& axis)
+{
+    return std::abs((b.centre - a.centre).dot(axis)) - projectedRadius(a, axis) - projectedRadius(b, axis);
+}
+
+// Clips a convex polygon to the half-space {p : normal . p <= offset}.
+std::vector<Vec3> clip(const std::vector<Vec3>& polygon, const Vec3& normal, Real offset)
+{
+    std::vector<Vec3> result;
+    result.reserve(polygon.size() + 1);
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+    {
+        const Vec3& p = polygon[i];
+        const Vec3& q = polygon[(i + 1) % polygon.size()];
+        const Real dp = normal.dot(p) - offset;
+        const Real dq = normal.dot(q) - offset;
+        if (dp <= 0.0)
+        {
+            result.push_back(p);
+        }
+        if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0))
+        {
+            result.push_back(p + (dp / (dp - dq)) * (q - p));
+        }
+    }
+    return result;
+}
+
+// Face contact: `reference` owns the face with outward normal `normal` (pointing at `incident`).
+// `sign` turns the reference normal into the pair's normal (from B toward A).
+void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& normal, const OrientedBox& incident,
+                 Real sign, Real threshold, std::vector<ContactPoint>& out)
+{
+    // the incident face is the one most opposed to the reference normal
+    int incidentAxis = 0;
+    Real mostOpposed = std::numeric_limits<Real>::infinity();
+    Real incidentSign = 1.0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const Real d = incident.axes.col(k).dot(normal);
+        for (const Real s : {1.0, -1.0})
+        {
+            if (s * d < mostOpposed)
+            {
+                mostOpposed = s * d;
+                incidentAxis = k;
+                incidentSign = s;
+            }
+        }
+    }
+    const int u = (incidentAxis + 1) % 3;
+    const int v = (incidentAxis + 2) % 3;
+    const Vec3 faceCentre = incident.centre + incidentSign * incident.half[incidentAxis] * incident.axes.col(incidentAxis);
+    const Vec3 du = incident.half[u] * incident.axes.col(u);
+    const Vec3 dv = incident.half[v] * incident.axes.col(v);
+    std::vector<Vec3> polygon{faceCentre + du + dv, faceCentre - du + dv, faceCentre - du - dv, faceCentre + du - dv};
+
+    // clip to the four side planes of the reference face
+    for (int k = 0; k < 3 && !polygon.empty(); ++k)
+    {
+        if (k == referenceAxis)
+        {
+            continue;
+        }
+        const Vec3 side = reference.axes.col(k);
+        const Real centre = side.dot(reference.centre);
+        polygon = clip(polygon, side, centre + reference.half[k]);
+        polygon = clip(polygon, -side, -centre + reference.half[k]);
+    }
+
+    const Real faceOffset = normal.dot(reference.centre) + reference.half[referenceAxis];
+    for (const Vec3& p : polygon)
+    {
+        const Real phi = normal.dot(p) - faceOffset;
+        if (phi < threshold)
+        {
+            out.push_back({p, sign * normal, phi});
+        }
+    }
+}
+
+// Closest points of the segments p + s d1 and q + t d2, s, t in [-1, 1] scaled by the half lengths.
+void edgeContact(const OrientedBox& a, int edgeA, const OrientedBox& b, int edgeB, const Vec3& normal, Real phi,
+                 std::vector<ContactPoint>& out)
+{
+    // the edge of A furthest toward B (against the normal) and the edge of B furthest toward A
+    Vec3 pointA = a.centre;
+    Vec3 pointB = b.centre;
+    for (int k = 0; k < 3; ++k)
+    {
+        if (k != edgeA)
+        {
+            pointA -= (a.axes.col(k).dot(normal) > 0.0 ? 1.0 : -1.0) * a.half[k] * a.axes.col(k);
+        }
+        if (k != edgeB)
+        {
+            pointB += (b.axes.col(k).dot(normal) > 0.0 ? 1.0 : -1.0) * b.half[k] * b.axes.col(k);
+        }
+    }
+    const Vec3 d1 = a.axes.col(edgeA);
+    const Vec3 d2 = b.axes.col(edgeB);
+    const Vec3 r = pointA - pointB;
+    const Real c = d1.dot(d2);
+    const Real denominator = 1.0 - c * c;
+    Real s = 0.0;
+    Real t = 0.0;
+    if (denominator > 1e-12)
+    {
+        s = (c * d2.dot(r) - d1.dot(r)) / denominator;
+        s = std::clamp(s, -a.half[edgeA], a.half[edgeA]);
+    }
+    t = std::clamp(d2.dot(r + s * d1), -b.half[edgeB], b.half[edgeB]);
+    s = std::clamp(d1.dot(pointB + t * d2 - pointA), -a.half[edgeA], a.half[edgeA]);
+    const Vec3 onA = pointA + s * d1;
+    const Vec3 onB = pointB + t * d2;
+    out.push_back({0.5 * (onA + onB), normal, phi});
+}
+
+} // namespace
+
+void collideBoxBox(const Box& boxA, const Pose& poseA, const Box& boxB, const Pose& poseB, Real threshold,
+                   std::vector<ContactPoint>& out)
+{
+    const OrientedBox a{poseA.position, poseA.rotation, boxA.halfExtents};
+    const OrientedBox b{poseB.position, poseB.rotation, boxB.halfExtents};
+    const Vec3 between = a.centre - b.centre; // from B toward A
+    const Real scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
+
+    // face axes: least penetration (largest separation) wins; A's faces win ties so the choice
+    // does not flicker between equal faces from one step to the next
+    Real bestFace = -std::numeric_limits<Real>::infinity();
+    int faceAxis = -1;
+    bool faceOfA = true;
+    for (int k = 0; k < 3; ++k)
+    {
+        const Real s = separation(a, b, a.axes.col(k));
+        if (s > bestFace + 1e-9 * scale)
+        {
+            bestFace = s;
+            faceAxis = k;
+            faceOfA = true;
+        }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+        const Real s = separation(a, b, b.axes.col(k));
+        if (s > bestFace + 1e-9 * scale)
+        {
+            bestFace = s;
+            faceAxis = k;
+            faceOfA = false;
+        }
+    }
+    if (bestFace >= threshold)
+    {
+        return;
+    }
+
+    // edge axes: only when clearly better than every face, since a face gives a whole patch
+    Real bestEdge = -std::numeric_limits<Real>::infinity();
+    int edgeA = -1;
+    int edgeB = -1;
+    Vec3 edgeNormal = Vec3::Zero();
+    for (int i = 0; i < 3; ++i)
+    {
+        for (int j = 0; j < 3; ++j)
+        {
+            Vec3 axis = a.axes.col(i).cross(b.axes.col(j));
+            const Real length = axis.norm();
+            if (length < 1e-6)
+            {
+                continue; // parallel edges: the face axes cover them
+            }
+            axis /= length;
+            const Real s = separation(a, b, axis);
+            if (s >= threshold)
+            {
+                return; // a separating axis: no contact
+            }
+            if (s > bestEdge)
+            {
+                bestEdge = s;
+                edgeA = i;
+                edgeB = j;
+                edgeNormal = axis.dot(between) >= 0.0 ? axis : Vec3(-axis);
+            }
+        }
+    }
+    if (edgeA >= 0 && bestEdge > bestFace + 1e-6 * scale)
+    {
+        edgeContact(a, edgeA, b, edgeB, edgeNormal, bestEdge, out);
+        return;
+    }
+
+    if (faceOfA)
+    {
+        // reference face on A, pointing at B; the pair's normal points the other way
+        const Vec3 axis = a.axes.col(faceAxis);
+        const Vec3 normal = axis.dot(-between) >= 0.0 ? axis : Vec3(-axis);
+        faceContact(a, faceAxis, normal, b, -1.0, threshold, out);
+    }
+    else
+    {
+        const Vec3 axis = b.axes.col(faceAxis);
+        const Vec3 normal = axis.dot(between) >= 0.0 ? axis : Vec3(-axis);
+        faceContact(b, faceAxis, normal, a, 1.0, threshold, out);
+    }
+}
+
+} // namespace impulse
