@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "collision/box_box.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>

@@ -5,16 +5,8 @@
 // that is still approaching gets an impulse, then both bodies are re-predicted and the pair is
 // searched again, so several corners of a box share the work in the order of their depth.
 //
-// Contact patches. When several points of the pair approach at once (a box flat on the ground, a
-// cube on a cube) the impulses at all of them are first solved together: the least-squares,
-// minimum-norm impulses that give every point its sticking target (normal velocity -eps u_n, no
-// slip). The rigid relative motion makes those targets consistent, and for a patch at rest the
-// solution spreads the load evenly with no tangential part. It is used when it is admissible:
-// every normal impulse non-negative, each in its friction cone, no kinetic energy gained.
-// Otherwise the deepest point alone gets an impulse as above, so sliding and tipping follow the
-// paper. One point at a time, friction answers the transient tilt each corner's impulse causes
-// and turns it into sideways slip and spin: a frictional stack then jitters at millimetres per
-// second, where the patch solve leaves it at rest.
+// Several points that approach at once form a contact patch and are first resolved together
+// (contact_patch.cpp); when the patch does not stick, the deepest point is resolved alone.
 //
 // Two refinements apply to the collision pass only, each switchable in StepOptions:
 // - mid-step restitution: the approach test uses the state velocity v (a resting body never
@@ -28,10 +20,9 @@
 #include "dynamics/pair_resolution.hpp"
 
 #include "collision/narrow_phase.hpp"
+#include "dynamics/contact_patch.hpp"
 #include "dynamics/impulse.hpp"
 #include "dynamics/integrate.hpp"
-
-#include <Eigen/QR>
 
 #include <cmath>
 #include <limits>
@@ -59,21 +50,23 @@ Pose poseAtFraction(const RigidBody& body, const PassSettings& settings, Real fr
                        fraction * settings.lookahead);
 }
 
-// Normal relative velocity at a point when the pair approaches there, zero otherwise. Approach is
-// measured net of round-off: a normal velocity within 64 ulp of the velocities it is computed from
-// is zero, so resolved contacts are not chased through floating-point noise. This is no velocity
-// threshold (it is ~1e-16 m/s for a body at rest): it only keeps the passes from spending their
-// iterations on noise.
-Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
-                   const ContactPoint& point, const PassSettings& settings)
+// Normal velocity to add to u_rel so that the collision impulse is sized with the time-n velocity
+// v + dt a/2 rather than the half-step velocity v. The term fades linearly for approach speeds
+// below one step of acceleration, |u_n| < dt |a_n|: there an impact cannot be told from resting
+// contact, and a resting body's round-off approach must not earn it a kick of dt |a_n| / 2.
+Real midStepCorrection(const RigidBody& a, const RigidBody& b, Real un, const Vec3& normal,
+                       const PassSettings& settings)
 {
-    const Vec3 ra = point.point - poseA.position;
-    const Vec3 rb = point.point - poseB.position;
-    const Vec3 uRel = a.linearVelocity + a.angularVelocity.cross(ra) - b.linearVelocity - b.angularVelocity.cross(rb);
-    const Real un = uRel.dot(point.normal);
-    const Real magnitude = a.linearVelocity.norm() + a.angularVelocity.norm() * ra.norm() + b.linearVelocity.norm() +
-                           b.angularVelocity.norm() * rb.norm() + settings.dt * settings.gravity.norm();
-    return un < -64.0 * std::numeric_limits<Real>::epsilon() * magnitude ? un : 0.0;
+    const Vec3 accelerationA = a.dynamic ? settings.gravity : Vec3::Zero();
+    const Vec3 accelerationB = b.dynamic ? settings.gravity : Vec3::Zero();
+    const Real an = (accelerationA - accelerationB).dot(normal);
+    if (!(an < 0.0))
+    {
+        return 0.0; // acceleration separates the pair: nothing to correct
+    }
+    const Real oneStep = -settings.dt * an;
+    const Real weight = std::min(1.0, -un / oneStep);
+    return weight * 0.5 * settings.dt * an;
 }
 
 const ContactPoint* deepestApproaching(const RigidBody& a, const Pose& poseA, const RigidBody& b,
@@ -161,28 +154,6 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     }
 }
 
-// Normal velocity to add to u_rel so that the collision impulse is sized with the time-n velocity
-// v + dt a/2 rather than the half-step velocity v. The term fades linearly for approach speeds
-// below one step of acceleration, |u_n| < dt |a_n|: there an impact cannot be told from resting
-// contact, and a resting body's round-off approach must not earn it a kick of dt |a_n| / 2.
-Real midStepCorrection(const RigidBody& a, const RigidBody& b, Real un, const Vec3& normal,
-                       const PassSettings& settings)
-{
-    const Vec3 accelerationA = a.dynamic ? settings.gravity : Vec3::Zero();
-    const Vec3 accelerationB = b.dynamic ? settings.gravity : Vec3::Zero();
-    const Real an = (accelerationA - accelerationB).dot(normal);
-    if (!(an < 0.0))
-    {
-        return 0.0; // acceleration separates the pair: nothing to correct
-    }
-    const Real oneStep = -settings.dt * an;
-    const Real weight = std::min(1.0, -un / oneStep);
-    return weight * 0.5 * settings.dt * an;
-}
-
-Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
-                      const ContactPoint& contact, const PassSettings& settings);
-
 ContactBody contactBody(const RigidBody& body, const Vec3& point, const Pose& pose)
 {
     if (body.immovable())
@@ -220,6 +191,62 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
     return true;
 }
 
+constexpr std::size_t kMaxPatchPoints = 8;
+
+// Appends the touching points of `body` against `other` that approach, as patch points.
+void collectApproaching(const RigidBody& body, RigidBody& other, Real friction, const PassSettings& settings,
+                        const std::vector<ContactPoint>& points, std::vector<PatchPoint>& patch)
+{
+    for (const ContactPoint& point : points)
+    {
+        if (point.phi < settings.threshold &&
+            approachSpeed(body, body.predicted, other, other.predicted, point, settings) < 0.0)
+        {
+            patch.push_back({point, &other, friction});
+        }
+    }
+}
+
+// The restitution threshold applies per patch as it does per point: all slow means no bounce.
+Real patchRestitution(const RigidBody& body, Real eps, const std::vector<PatchPoint>& patch,
+                      const PassSettings& settings)
+{
+    if (!(eps > 0.0) || !(settings.restitutionThreshold > 0.0))
+    {
+        return eps;
+    }
+    for (const PatchPoint& point : patch)
+    {
+        const RigidBody& other = *point.other;
+        const Vec3 u = body.pointVelocity(point.contact.point, body.predicted) -
+                       other.pointVelocity(point.contact.point, other.predicted);
+        if (-u.dot(point.contact.normal) >= settings.restitutionThreshold)
+        {
+            return eps;
+        }
+    }
+    return 0.0;
+}
+
+} // namespace
+
+// Normal relative velocity at a point when the pair approaches there, zero otherwise. Approach is
+// measured net of round-off: a normal velocity within 64 ulp of the velocities it is computed from
+// is zero, so resolved contacts are not chased through floating-point noise. This is no velocity
+// threshold (it is ~1e-16 m/s for a body at rest): it only keeps the passes from spending their
+// iterations on noise.
+Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
+                   const ContactPoint& point, const PassSettings& settings)
+{
+    const Vec3 ra = point.point - poseA.position;
+    const Vec3 rb = point.point - poseB.position;
+    const Vec3 uRel = a.linearVelocity + a.angularVelocity.cross(ra) - b.linearVelocity - b.angularVelocity.cross(rb);
+    const Real un = uRel.dot(point.normal);
+    const Real magnitude = a.linearVelocity.norm() + a.angularVelocity.norm() * ra.norm() + b.linearVelocity.norm() +
+                           b.angularVelocity.norm() * rb.norm() + settings.dt * settings.gravity.norm();
+    return un < -64.0 * std::numeric_limits<Real>::epsilon() * magnitude ? un : 0.0;
+}
+
 // Relative velocity at a point, with the mid-step correction of the collision pass.
 Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                       const ContactPoint& contact, const PassSettings& settings)
@@ -232,203 +259,6 @@ Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b,
     return uRel;
 }
 
-// Re-spreads the impulses `solved` (3 per point) over the patch without changing their net force and
-// moment, so the motion they cause is the same: normal loads with the least norm that carry the
-// net normal force and tilting moment, and friction in proportion to each point's load plus a
-// torsional part for the moment about the normal. Any rigid patch that sticks can be held this
-// way; the least-norm impulses themselves share friction evenly between lightly and heavily loaded
-// points and can leave a light one outside its cone. Returns false if a point would have to pull
-// or slip. All points of a patch share one normal (the pairs are convex).
-bool distributeOverPatch(const std::vector<const ContactPoint*>& patch, const Eigen::VectorXd& solved, Real mu,
-                         std::vector<Vec3>& impulses)
-{
-    const std::size_t n = patch.size();
-    const Vec3 normal = patch[0]->normal;
-    Vec3 origin = Vec3::Zero();
-    for (const ContactPoint* point : patch)
-    {
-        origin += point->point / static_cast<Real>(n);
-    }
-    Vec3 force = Vec3::Zero();
-    Vec3 moment = Vec3::Zero();
-    for (std::size_t k = 0; k < n; ++k)
-    {
-        const Vec3 j = solved.segment<3>(3 * static_cast<Eigen::Index>(k));
-        force += j;
-        moment += (patch[k]->point - origin).cross(j);
-    }
-    const Real normalForce = force.dot(normal);
-    if (!(normalForce > 0.0))
-    {
-        return false;
-    }
-    const Vec3 tangentialForce = force - normalForce * normal;
-    const Real twist = moment.dot(normal);
-    const Vec3 tilt = moment - twist * normal;
-
-    // loads: sum = normal force, sum of (p - o) x (load n) = tilting moment; least norm
-    Eigen::MatrixXd equations(4, static_cast<Eigen::Index>(n));
-    for (std::size_t k = 0; k < n; ++k)
-    {
-        const Vec3 arm = (patch[k]->point - origin).cross(normal);
-        equations.col(static_cast<Eigen::Index>(k)) << 1.0, arm.x(), arm.y(), arm.z();
-    }
-    const Eigen::Vector4d required(normalForce, tilt.x(), tilt.y(), tilt.z());
-    const Eigen::VectorXd loads = equations.completeOrthogonalDecomposition().solve(required);
-    if (!loads.allFinite() || (equations * loads - required).norm() > 1e-9 * required.norm())
-    {
-        return false;
-    }
-    Vec3 centre = Vec3::Zero();
-    for (std::size_t k = 0; k < n; ++k)
-    {
-        const Real load = loads[static_cast<Eigen::Index>(k)];
-        if (load < -1e-12 * normalForce)
-        {
-            return false; // the moment needs a point to pull: the body tips, not a sticking patch
-        }
-        centre += load * patch[k]->point;
-    }
-    centre /= normalForce;
-
-    // friction: the net tangential force in proportion to load, plus kappa * load * n x (p - c),
-    // which adds no net force and supplies the remaining moment about the normal
-    Real spread = 0.0;
-    for (std::size_t k = 0; k < n; ++k)
-    {
-        spread += loads[static_cast<Eigen::Index>(k)] * (patch[k]->point - centre).squaredNorm();
-    }
-    const Real remainingTwist = twist - (centre - origin).cross(tangentialForce).dot(normal);
-    Real kappa = 0.0;
-    if (spread > 0.0)
-    {
-        kappa = remainingTwist / spread;
-    }
-    else if (std::abs(remainingTwist) > 1e-12 * normalForce)
-    {
-        return false; // a twist no spread of friction can supply
-    }
-    for (std::size_t k = 0; k < n; ++k)
-    {
-        const Real load = std::max(0.0, loads[static_cast<Eigen::Index>(k)]);
-        const Vec3 friction = load * (tangentialForce / normalForce + kappa * normal.cross(patch[k]->point - centre));
-        if (friction.norm() > mu * load + 1e-12 * normalForce)
-        {
-            return false; // this point would slip
-        }
-        impulses[k] = load * normal + friction;
-    }
-    return true;
-}
-
-// The patch solve described at the top of the file. Returns false, changing nothing, when the
-// simultaneous sticking impulses are not admissible.
-bool applyPatchImpulse(RigidBody& a, RigidBody& b, const std::vector<const ContactPoint*>& patch, Real eps, Real mu,
-                       const PassSettings& settings)
-{
-    const auto n = static_cast<Eigen::Index>(patch.size());
-    const Real invMassA = a.immovable() ? 0.0 : a.invMass;
-    const Real invMassB = b.immovable() ? 0.0 : b.invMass;
-    const Mat3 invInertiaA = a.immovable() ? Mat3::Zero() : a.invInertiaWorld;
-    const Mat3 invInertiaB = b.immovable() ? Mat3::Zero() : b.invInertiaWorld;
-    std::vector<Vec3> leverA(patch.size());
-    std::vector<Vec3> leverB(patch.size());
-    std::vector<Vec3> velocity(patch.size());
-    Eigen::MatrixXd coupling(3 * n, 3 * n);
-    Eigen::VectorXd target(3 * n);
-    for (Eigen::Index i = 0; i < n; ++i)
-    {
-        const auto k = static_cast<std::size_t>(i);
-        leverA[k] = patch[k]->point - a.predicted.position;
-        leverB[k] = patch[k]->point - b.predicted.position;
-        velocity[k] = relativeVelocity(a, a.predicted, b, b.predicted, *patch[k], settings);
-        const Vec3& normal = patch[k]->normal;
-        const Real un = velocity[k].dot(normal);
-        target.segment<3>(3 * i) = -(1.0 + eps) * un * normal - (velocity[k] - un * normal);
-    }
-    for (Eigen::Index i = 0; i < n; ++i)
-    {
-        for (Eigen::Index k = 0; k < n; ++k)
-        {
-            const auto ui = static_cast<std::size_t>(i);
-            const auto uk = static_cast<std::size_t>(k);
-            coupling.block<3, 3>(3 * i, 3 * k) = couplingMatrix(invMassA, invInertiaA, leverA[ui], leverA[uk]) +
-                                                  couplingMatrix(invMassB, invInertiaB, leverB[ui], leverB[uk]);
-        }
-    }
-    const Eigen::VectorXd solved = coupling.completeOrthogonalDecomposition().solve(target);
-    if (!solved.allFinite() || (coupling * solved - target).norm() > 1e-9 * target.norm())
-    {
-        return false; // the targets are not reachable together
-    }
-    std::vector<Vec3> impulses(patch.size());
-    if (!distributeOverPatch(patch, solved, mu, impulses))
-    {
-        return false; // the patch would pull somewhere, or slip: not a sticking patch
-    }
-    Real work = 0.0;
-    Real scale = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i)
-    {
-        const auto k = static_cast<std::size_t>(i);
-        work += impulses[k].dot(velocity[k] + 0.5 * Vec3(target.segment<3>(3 * i)));
-        scale += impulses[k].norm() * velocity[k].norm();
-    }
-    if (work > 1e-12 * scale)
-    {
-        return false;
-    }
-    for (std::size_t k = 0; k < patch.size(); ++k)
-    {
-        if (!a.immovable())
-        {
-            applyImpulse(a, impulses[k], leverA[k]);
-        }
-        if (!b.immovable())
-        {
-            applyImpulse(b, -impulses[k], leverB[k]);
-        }
-    }
-    return true;
-}
-
-constexpr std::size_t kMaxPatchPoints = 8;
-
-// The touching points of the pair that approach, in the order the narrow phase reported them.
-void collectApproaching(const RigidBody& a, const RigidBody& b, const PassSettings& settings,
-                        const std::vector<ContactPoint>& points, std::vector<const ContactPoint*>& patch)
-{
-    patch.clear();
-    for (const ContactPoint& point : points)
-    {
-        if (point.phi < settings.threshold && approachSpeed(a, a.predicted, b, b.predicted, point, settings) < 0.0)
-        {
-            patch.push_back(&point);
-        }
-    }
-}
-
-// The restitution threshold applies per patch as it does per point: all slow means no bounce.
-Real patchRestitution(const RigidBody& a, const RigidBody& b, Real eps, const std::vector<const ContactPoint*>& patch,
-                      const PassSettings& settings)
-{
-    if (!(eps > 0.0) || !(settings.restitutionThreshold > 0.0))
-    {
-        return eps;
-    }
-    for (const ContactPoint* point : patch)
-    {
-        const Vec3 u = a.pointVelocity(point->point, a.predicted) - b.pointVelocity(point->point, b.predicted);
-        if (-u.dot(point->normal) >= settings.restitutionThreshold)
-        {
-            return eps;
-        }
-    }
-    return 0.0;
-}
-
-} // namespace
-
 void predictBody(RigidBody& body, const PassSettings& settings)
 {
     body.predicted = poseAtFraction(body, settings, 1.0);
@@ -437,7 +267,7 @@ void predictBody(RigidBody& body, const PassSettings& settings)
 int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
                 std::vector<ContactPoint>& scratch)
 {
-    std::vector<const ContactPoint*> patch;
+    std::vector<PatchPoint> patch;
     int applied = 0;
     for (int iteration = 0; iteration < settings.pairIterations; ++iteration)
     {
@@ -449,9 +279,10 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         {
             break;
         }
-        collectApproaching(a, b, settings, scratch, patch);
+        patch.clear();
+        collectApproaching(a, b, mu, settings, scratch, patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
-            applyPatchImpulse(a, b, patch, patchRestitution(a, b, eps, patch, settings), mu, settings))
+            applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings))
         {
             // every approaching point has its target: repeating would only compound a negative
             // restitution of the ramp, or chase round-off
@@ -474,6 +305,37 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         predictBody(a, settings);
         predictBody(b, settings);
         ++applied;
+    }
+    return applied;
+}
+
+int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Real eps, const PassSettings& settings,
+                      std::vector<ContactPoint>& scratch)
+{
+    if (supports.size() > 1)
+    {
+        std::vector<PatchPoint> patch;
+        for (const Support& support : supports)
+        {
+            scratch.clear();
+            collideShapes(body.shape, body.predicted, support.body->shape, support.body->predicted, settings.threshold,
+                          scratch);
+            collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
+        }
+        if (patch.size() > 1 && patch.size() <= kMaxPatchPoints && applyPatchImpulse(body, patch, eps, settings))
+        {
+            predictBody(body, settings);
+            for (const Support& support : supports)
+            {
+                predictBody(*support.body, settings);
+            }
+            return 1;
+        }
+    }
+    int applied = 0;
+    for (const Support& support : supports)
+    {
+        applied += resolvePair(body, *support.body, eps, support.friction, settings, scratch);
     }
     return applied;
 }

@@ -27,6 +27,16 @@ struct PassSettings
     Real restitutionThreshold = 0.0; ///< approach speeds below this get restitution 0
 };
 
+/// Relative velocity u_a - u_b at a contact point with the bodies at the given poses; in the
+/// collision pass it includes the mid-step correction of the normal velocity.
+Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
+                      const ContactPoint& contact, const PassSettings& settings);
+
+/// The normal relative velocity at a point when the pair approaches there (negative), else zero.
+/// Normal velocities within 64 ulp of the velocities they are computed from count as zero.
+Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
+                   const ContactPoint& point, const PassSettings& settings);
+
 /// Places body.predicted at the end of the step under the velocities this pass uses.
 void predictBody(RigidBody& body, const PassSettings& settings);
 
@@ -35,5 +45,19 @@ void predictBody(RigidBody& body, const PassSettings& settings);
 /// both bodies. Returns the number of impulses applied.
 int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
                 std::vector<ContactPoint>& scratch);
+
+/// A body another rests on, with the friction of that pair.
+struct Support
+{
+    RigidBody* body = nullptr;
+    Real friction = 0.0;
+};
+
+/// Resolves a body against everything it rests on (the contact pass, and shock propagation where
+/// the supports are frozen): its approaching points on all supports are first resolved as one patch
+/// with restitution eps, so a lintel on two stacks or a block on two blocks is held by both at once;
+/// if that patch does not stick, each support is resolved as a pair. Returns the impulses applied.
+int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Real eps, const PassSettings& settings,
+                      std::vector<ContactPoint>& scratch);
 
 } // namespace impulse

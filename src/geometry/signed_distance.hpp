@@ -18,8 +18,4 @@ DistanceSample sphereDistance(Real radius, const Vec3& pointLocal);
 DistanceSample boxDistance(const Vec3& halfExtents, const Vec3& pointLocal);
 DistanceSample planeDistance(const Plane& plane, const Vec3& pointLocal);
 
-/// The parameter t in [0, 1] of the point of segment a + t (b - a) deepest inside the box
-/// (exact where that point is inside; a point of least penetration bound otherwise).
-Real deepestSegmentParameterInBox(const Vec3& halfExtents, const Vec3& aLocal, const Vec3& bLocal);
-
 } // namespace impulse

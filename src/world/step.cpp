@@ -123,6 +123,7 @@ void WorldImpl::stepTraditional(const StepOptions& options)
     updateVelocities(options);
     updatePositions(options);
     findCandidatePairs(options, atCurrentPoseSettings(options, def.gravity, 0.0));
+    assignSingleLevel();
     solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0));
     solveContacts(options, atCurrentPoseSettings(options, def.gravity, options.contactThickness));
 }
@@ -253,6 +254,18 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     pairLevels.swap(sortedLevels);
 }
 
+void WorldImpl::assignSingleLevel()
+{
+    // no contact graph: every dynamic body on one level, so the contact pass resolves each body
+    // against the static geometry it touches and every pair of dynamic bodies two-way
+    for (RigidBody& body : bodies)
+    {
+        body.level = body.dynamic ? 0 : -1;
+    }
+    pairLevels.assign(pairs.size(), 0);
+    stats.contactLevels = 1;
+}
+
 void WorldImpl::updateVelocities(const StepOptions& options)
 {
     for (RigidBody& body : bodies)
@@ -274,12 +287,7 @@ void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& se
     {
         // restitution ramps -1 + 1/n, ..., 0: early sweeps remove only part of each approach
         const Real eps = -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
-        int applied = 0;
-        for (std::size_t k = 0; k < pairs.size(); ++k)
-        {
-            applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], eps, pairCoefficients[k].friction, settings,
-                                   points);
-        }
+        const int applied = sweepLevels(eps, false, settings);
         stats.contactImpulses += applied;
         if (applied == 0)
         {
@@ -290,13 +298,26 @@ void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& se
 
 void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
 {
-    // GBF03 sec. 8: one sweep up the levels with eps = 0; while a level is processed every body of
-    // a lower level is frozen (infinite mass), so corrections only travel upward and a box can no
+    // GBF03 sec. 8: one more sweep up the levels with eps = 0, every body of a lower level frozen
+    // (infinite mass) while a level is processed: corrections only travel upward, and a box can no
     // longer push its supports into the ground.
     for (RigidBody& body : bodies)
     {
         predictBody(body, settings);
     }
+    stats.shockImpulses += sweepLevels(0.0, true, settings);
+    for (RigidBody& body : bodies)
+    {
+        body.frozen = false;
+    }
+}
+
+int WorldImpl::sweepLevels(Real eps, bool freezeLowerLevels, const PassSettings& settings)
+{
+    // Pairs are sorted by level, a pair belonging to the higher level of its two bodies. Within a
+    // level each body is resolved against all its supports at once (the pairs with a lower-level or
+    // static partner), then the pairs between two bodies of the level are resolved two-way.
+    int applied = 0;
     for (std::size_t first = 0; first < pairs.size();)
     {
         const int level = pairLevels[first];
@@ -305,24 +326,49 @@ void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
         {
             ++last;
         }
+        levelBodies.clear();
         for (std::size_t k = first; k < last; ++k)
         {
             for (const std::uint32_t i : {pairs[k].a, pairs[k].b})
             {
-                bodies[i].frozen = bodies[i].dynamic && bodies[i].level < level;
+                if (freezeLowerLevels)
+                {
+                    bodies[i].frozen = bodies[i].dynamic && bodies[i].level < level;
+                }
+                if (bodies[i].dynamic && bodies[i].level == level)
+                {
+                    levelBodies.push_back(i);
+                }
             }
+        }
+        std::sort(levelBodies.begin(), levelBodies.end());
+        levelBodies.erase(std::unique(levelBodies.begin(), levelBodies.end()), levelBodies.end());
+        for (const std::uint32_t b : levelBodies)
+        {
+            supports.clear();
+            for (std::size_t k = first; k < last; ++k)
+            {
+                const BodyPair& pair = pairs[k];
+                const std::uint32_t other = pair.a == b ? pair.b : (pair.b == b ? pair.a : b);
+                if (other != b && bodies[other].level < level)
+                {
+                    supports.push_back({&bodies[other], pairCoefficients[k].friction});
+                }
+            }
+            applied += resolveOnSupports(bodies[b], supports, eps, settings, points);
         }
         for (std::size_t k = first; k < last; ++k)
         {
-            stats.shockImpulses +=
-                resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], 0.0, pairCoefficients[k].friction, settings, points);
+            const BodyPair& pair = pairs[k];
+            if (bodies[pair.a].level == level && bodies[pair.b].level == level)
+            {
+                applied += resolvePair(bodies[pair.a], bodies[pair.b], eps, pairCoefficients[k].friction, settings,
+                                       points);
+            }
         }
         first = last;
     }
-    for (RigidBody& body : bodies)
-    {
-        body.frozen = false;
-    }
+    return applied;
 }
 
 void WorldImpl::updatePositions(const StepOptions& options)

@@ -34,6 +34,8 @@ public:
     std::vector<int> pairLevels;                    ///< parallel to pairs: max level of the two bodies
     std::vector<SupportEdge> supportEdges;          ///< contact graph of this step
     std::vector<std::vector<std::uint32_t>> bodyPairs; ///< per body: indices into pairs
+    std::vector<std::uint32_t> levelBodies;          ///< scratch of sweepLevels
+    std::vector<Support> supports;                   ///< scratch of sweepLevels
 
     PairCoefficients coefficients(MaterialId a, MaterialId b) const;
     void step(const StepOptions& options);
@@ -47,8 +49,10 @@ private:
     void solveCollisions(const StepOptions& options, const PassSettings& settings);
     void updateVelocities(const StepOptions& options);
     void buildContactGraph(const StepOptions& options);
+    void assignSingleLevel();
     void solveContacts(const StepOptions& options, const PassSettings& settings);
     void propagateShock(const StepOptions& options, const PassSettings& settings);
+    int sweepLevels(Real eps, bool freezeLowerLevels, const PassSettings& settings);
     void updatePositions(const StepOptions& options);
 };
 
