@@ -53,8 +53,14 @@ Figures measure(const std::string& path, bool shock, int steps)
         }
     }
     std::sort(times.begin(), times.end());
-    const auto at = [&](double q) { return times[static_cast<std::size_t>(q * static_cast<double>(times.size() - 1))]; };
-    return {at(0.5), at(0.1), at(0.9), pairs / steps, impulses / steps, scene.world.stateHash(),
+    const auto at = [&](double q)
+    { return times[static_cast<std::size_t>(q * static_cast<double>(times.size() - 1))]; };
+    return {at(0.5),
+            at(0.1),
+            at(0.9),
+            pairs / steps,
+            impulses / steps,
+            scene.world.stateHash(),
             scene.dynamicBodies.size()};
 }
 
@@ -83,7 +89,8 @@ int main(int argc, char** argv)
     }
     if (scenes.empty())
     {
-        scenes = {std::string(IMPULSE_SCENES_DIR) + "/box_stack_50.json", std::string(IMPULSE_SCENES_DIR) + "/pyramid.json"};
+        scenes = {std::string(IMPULSE_SCENES_DIR) + "/box_stack_50.json",
+                  std::string(IMPULSE_SCENES_DIR) + "/pyramid.json"};
     }
     std::printf("%-16s %6s %6s %10s %18s %8s %10s  %s\n", "scene", "bodies", "shock", "ms/step", "p10-p90", "pairs",
                 "impulses", "state hash");

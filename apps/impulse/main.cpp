@@ -28,6 +28,10 @@ int main(int argc, char** argv)
                      "traditional (velocity and position, then collisions and contacts)")
         ->check(CLI::IsMember({"guendelman", "traditional"}));
     runCommand
+        ->add_option("--shock-propagation", run.shockPropagation,
+                     "End the contact pass with a shock-propagation sweep: on (the default) or off")
+        ->check(CLI::IsMember({"on", "off"}));
+    runCommand
         ->add_option("--restitution-threshold", run.restitutionThreshold,
                      "Resolve collisions approaching slower than this speed (m/s) with restitution 0; "
                      "default none")

@@ -55,6 +55,10 @@ int runScene(const RunOptions& options)
     {
         scene.options.scheme = *options.scheme == "traditional" ? Scheme::Traditional : Scheme::Guendelman;
     }
+    if (options.shockPropagation)
+    {
+        scene.options.shockPropagation = *options.shockPropagation == "on";
+    }
     if (options.restitutionThreshold)
     {
         scene.options.restitutionThreshold = *options.restitutionThreshold;
@@ -104,8 +108,9 @@ int runScene(const RunOptions& options)
         // stop before a non-finite state reaches the file (cheap: a few comparisons per body)
         if (!stateIsFinite(scene.world, scene.dynamicBodies))
         {
-            std::cerr << "impulse: " << options.scenePath << ": the simulation diverged (non-finite state) at t = "
-                      << static_cast<double>(step) * dt << " s; try a smaller --dt\n";
+            std::cerr << "impulse: " << options.scenePath
+                      << ": the simulation diverged (non-finite state) at t = " << static_cast<double>(step) * dt
+                      << " s; try a smaller --dt\n";
             return 1;
         }
         if (writer && (step % options.every == 0 || step == steps))
@@ -130,7 +135,8 @@ int runScene(const RunOptions& options)
     std::printf("bodies      %zu dynamic, %zu static\n", scene.dynamicBodies.size(),
                 static_cast<std::size_t>(scene.world.bodyCount()) - scene.dynamicBodies.size());
     std::printf("steps       %lld (dt %g s, %g s simulated)\n", steps, dt, static_cast<double>(steps) * dt);
-    std::printf("wall time   %.3f s, %.4f ms per step\n", wall, steps > 0 ? 1e3 * wall / static_cast<double>(steps) : 0.0);
+    std::printf("wall time   %.3f s, %.4f ms per step\n", wall,
+                steps > 0 ? 1e3 * wall / static_cast<double>(steps) : 0.0);
     std::printf("energy      %.9g J at start, %.9g J at end\n", energyStart, energyEnd);
     std::printf("state hash  %016llx\n", static_cast<unsigned long long>(scene.world.stateHash()));
     if (writer)

@@ -13,10 +13,11 @@ struct RunOptions
     std::string scenePath;
     std::optional<double> dt;
     std::optional<double> duration;
-    std::string outPath; ///< empty: no trajectory file
-    long long every = 1; ///< write every N-th step
-    std::optional<std::string> scheme;            ///< "guendelman" or "traditional"
-    std::optional<double> restitutionThreshold;   ///< m/s
+    std::string outPath;                         ///< empty: no trajectory file
+    long long every = 1;                         ///< write every N-th step
+    std::optional<std::string> scheme;           ///< "guendelman" or "traditional"
+    std::optional<double> restitutionThreshold;  ///< m/s
+    std::optional<std::string> shockPropagation; ///< "on" or "off"
 };
 
 /// Runs a scene and prints a summary. Returns the process exit code: 0 on success, 2 for a scene

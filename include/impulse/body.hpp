@@ -23,12 +23,12 @@ struct BodyDef
     BodyType type = BodyType::Dynamic;
     Shape shape = Sphere{};
     MaterialId material{};
-    Real mass = 0.0;    ///< kg
-    Real density = 0.0; ///< kg/m^3, used when mass is 0
-    Vec3 position = Vec3::Zero();               ///< centre of mass, world frame
-    Quat orientation = Quat::Identity();        ///< normalised on creation
-    Vec3 linearVelocity = Vec3::Zero();         ///< world frame
-    Vec3 angularVelocity = Vec3::Zero();        ///< world frame, rad/s
+    Real mass = 0.0;                     ///< kg
+    Real density = 0.0;                  ///< kg/m^3, used when mass is 0
+    Vec3 position = Vec3::Zero();        ///< centre of mass, world frame
+    Quat orientation = Quat::Identity(); ///< normalised on creation
+    Vec3 linearVelocity = Vec3::Zero();  ///< world frame
+    Vec3 angularVelocity = Vec3::Zero(); ///< world frame, rad/s
 };
 
 /// Handle to a body of a World; bodies are numbered in creation order.

@@ -30,11 +30,11 @@ enum class Scheme
 /// Controls of one time step. Defaults are those of Guendelman, Bridson & Fedkiw 2003.
 struct StepOptions
 {
-    Real dt = 1e-3;              ///< seconds
+    Real dt = 1e-3; ///< seconds
     Scheme scheme = Scheme::Guendelman;
-    int collisionIterations = 5; ///< sweeps of the elastic collision pass
-    int contactIterations = 10;  ///< sweeps of the contact pass; restitution ramps -1+1/n ... 0
-    int pairIterations = 20;     ///< cap on impulses per pair within one sweep
+    int collisionIterations = 5;  ///< sweeps of the elastic collision pass
+    int contactIterations = 10;   ///< sweeps of the contact pass; restitution ramps -1+1/n ... 0
+    int pairIterations = 20;      ///< cap on impulses per pair within one sweep
     Real contactThickness = 1e-6; ///< m; the contact pass treats points closer than this as touching
     /// Size collision impulses with the time-n velocity v + dt*a/2 (exact energy for eps = 1) rather
     /// than with v alone, which loses m*|g|*|v|*dt per bounce. The approach test always uses v.
@@ -68,7 +68,7 @@ class WorldImpl;
 /// A set of rigid bodies advanced together.
 class World
 {
-public:
+  public:
     explicit World(const WorldDef& def = {});
     ~World();
     World(World&&) noexcept;
@@ -93,8 +93,8 @@ public:
     std::uint32_t bodyCount() const;
     bool isDynamic(BodyId body) const;
     BodyState state(BodyId body) const;
-    Real mass(BodyId body) const;              ///< infinite for static bodies
-    Vec3 principalInertia(BodyId body) const;  ///< body frame, kg m^2
+    Real mass(BodyId body) const;             ///< infinite for static bodies
+    Vec3 principalInertia(BodyId body) const; ///< body frame, kg m^2
     const Shape& shape(BodyId body) const;
     Vec3 gravity() const;
     Real time() const; ///< seconds simulated so far
@@ -109,7 +109,7 @@ public:
     /// A hash of every dynamic body's state bits: equal hashes mean bit-identical states.
     std::uint64_t stateHash() const;
 
-private:
+  private:
     std::unique_ptr<WorldImpl> m_impl;
 };
 

@@ -51,7 +51,7 @@ std::string describe(const Json& j)
 // A JSON value together with where it sits in the file, for error messages.
 class Field
 {
-public:
+  public:
     Field(const Json& value, std::string pointer, const std::string& source)
         : m_value(value), m_pointer(std::move(pointer)), m_source(source)
     {
@@ -242,7 +242,7 @@ public:
         return Quat(unit[0], unit[1], unit[2], unit[3]);
     }
 
-private:
+  private:
     const Json& m_value;
     std::string m_pointer;
     const std::string& m_source;
@@ -280,9 +280,9 @@ Material readMaterial(const Field& field)
 
 void readSolver(const Field& field, StepOptions& options)
 {
-    field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations",
-                         "contact_thickness", "mid_step_restitution", "time_of_impact_geometry",
-                         "restitution_threshold"});
+    field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
+                         "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold",
+                         "shock_propagation"});
     if (field.has("scheme"))
     {
         const std::string scheme = field.at("scheme").text();
@@ -298,6 +298,10 @@ void readSolver(const Field& field, StepOptions& options)
         {
             field.at("scheme").fail("unknown scheme \"" + scheme + "\" (expected guendelman or traditional)");
         }
+    }
+    if (field.has("shock_propagation"))
+    {
+        options.shockPropagation = field.at("shock_propagation").boolean();
     }
     if (field.has("restitution_threshold"))
     {
@@ -379,7 +383,8 @@ Scene parseScene(const std::string& text, const std::string& source)
     {
         materialIds[name] = scene.world.createMaterial(readMaterial(materials.at(name.c_str())));
     }
-    const auto lookupMaterial = [&](const Field& field) {
+    const auto lookupMaterial = [&](const Field& field)
+    {
         const std::string name = field.text();
         const auto found = materialIds.find(name);
         if (found == materialIds.end())
@@ -401,8 +406,9 @@ Scene parseScene(const std::string& text, const std::string& source)
             {
                 names.fail("must name exactly two materials");
             }
-            scene.world.setPairCoefficients(lookupMaterial(names.item(0)), lookupMaterial(names.item(1)),
-                                            {pair.at("restitution").inRange(0.0, 1.0), pair.at("friction").nonNegative()});
+            scene.world.setPairCoefficients(
+                lookupMaterial(names.item(0)), lookupMaterial(names.item(1)),
+                {pair.at("restitution").inRange(0.0, 1.0), pair.at("friction").nonNegative()});
         }
     }
 

@@ -19,12 +19,12 @@ void TrajectoryWriter::writeSample(Real t, const World& world, const std::vector
     for (std::size_t k = 0; k < bodies.size(); ++k)
     {
         const BodyState s = world.state(bodies[k]);
-        const int length = std::snprintf(
-            line, sizeof line,
-            "%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, k,
-            s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(),
-            s.orientation.y(), s.orientation.z(), s.linearVelocity.x(), s.linearVelocity.y(),
-            s.linearVelocity.z(), s.angularVelocity.x(), s.angularVelocity.y(), s.angularVelocity.z());
+        const int length =
+            std::snprintf(line, sizeof line,
+                          "%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                          t, k, s.position.x(), s.position.y(), s.position.z(), s.orientation.w(), s.orientation.x(),
+                          s.orientation.y(), s.orientation.z(), s.linearVelocity.x(), s.linearVelocity.y(),
+                          s.linearVelocity.z(), s.angularVelocity.x(), s.angularVelocity.y(), s.angularVelocity.z());
         m_out.write(line, length);
     }
 }

@@ -78,7 +78,8 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
     }
     const int u = (incidentAxis + 1) % 3;
     const int v = (incidentAxis + 2) % 3;
-    const Vec3 faceCentre = incident.centre + incidentSign * incident.half[incidentAxis] * incident.axes.col(incidentAxis);
+    const Vec3 faceCentre =
+        incident.centre + incidentSign * incident.half[incidentAxis] * incident.axes.col(incidentAxis);
     const Vec3 du = incident.half[u] * incident.axes.col(u);
     const Vec3 dv = incident.half[v] * incident.axes.col(v);
     std::vector<Vec3> polygon{faceCentre + du + dv, faceCentre - du + dv, faceCentre - du - dv, faceCentre + du - dv};

@@ -42,11 +42,13 @@ void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, st
     }
 
     // sweep along x; ties broken by index so the result never depends on sort stability
-    std::sort(m_order.begin(), m_order.end(), [&](std::uint32_t l, std::uint32_t r) {
-        const Real lx = m_bounds[l].lower.x();
-        const Real rx = m_bounds[r].lower.x();
-        return lx < rx || (lx == rx && l < r);
-    });
+    std::sort(m_order.begin(), m_order.end(),
+              [&](std::uint32_t l, std::uint32_t r)
+              {
+                  const Real lx = m_bounds[l].lower.x();
+                  const Real rx = m_bounds[r].lower.x();
+                  return lx < rx || (lx == rx && l < r);
+              });
     for (std::size_t k = 0; k < m_order.size(); ++k)
     {
         const std::uint32_t i = m_order[k];

@@ -28,11 +28,11 @@ struct Aabb
 /// comes within the margin of them.
 class BroadPhase
 {
-public:
+  public:
     /// Fills `pairs`, sorted by (a, b), for the bodies at time n with `predicted` already set.
     void findPairs(const std::vector<RigidBody>& bodies, Real margin, std::vector<BodyPair>& pairs);
 
-private:
+  private:
     std::vector<Aabb> m_bounds;
     std::vector<std::uint32_t> m_order;
     std::vector<std::uint32_t> m_planes;

@@ -12,9 +12,9 @@ namespace impulse
 /// u_rel = u_A - u_B with u_rel . normal < 0 is approaching and an impulse +j acts on A, -j on B.
 struct ContactPoint
 {
-    Vec3 point = Vec3::Zero();      ///< world frame
-    Vec3 normal = Vec3::UnitZ();    ///< world frame, unit, from B toward A
-    Real phi = 0.0;                 ///< signed distance; negative means interpenetrating
+    Vec3 point = Vec3::Zero();   ///< world frame
+    Vec3 normal = Vec3::UnitZ(); ///< world frame, unit, from B toward A
+    Real phi = 0.0;              ///< signed distance; negative means interpenetrating
 };
 
 } // namespace impulse

@@ -98,8 +98,7 @@ void boxPlane(const Box& a, const Pose& poseA, const Plane& b, const Pose& poseB
 }
 
 // Runs `collide(b, a)` and re-expresses its points for the pair (a, b).
-template <class Collide>
-void swapped(Collide collide, std::vector<ContactPoint>& out)
+template <class Collide> void swapped(Collide collide, std::vector<ContactPoint>& out)
 {
     const std::size_t first = out.size();
     collide();

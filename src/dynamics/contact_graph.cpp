@@ -126,8 +126,8 @@ std::vector<int> computeContactLevels(const std::vector<bool>& isDynamic, const 
                 const int cw = component[w];
                 if (cw != c)
                 {
-                    componentLevel[static_cast<std::size_t>(cw)] =
-                        std::max(componentLevel[static_cast<std::size_t>(cw)], componentLevel[static_cast<std::size_t>(c)] + 1);
+                    componentLevel[static_cast<std::size_t>(cw)] = std::max(
+                        componentLevel[static_cast<std::size_t>(cw)], componentLevel[static_cast<std::size_t>(c)] + 1);
                 }
             }
         }

@@ -187,8 +187,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         velocityScale += u.norm();
     }
-    if (!solved.allFinite() ||
-        (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
+    if (!solved.allFinite() || (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
     {
         return false; // the targets are not reachable together
     }

@@ -53,8 +53,7 @@ Vec3 computeImpulse(const Vec3& uRel, const Vec3& n, const Mat3& K, Real eps, Re
     const bool insideCone = stickingNormal > 0.0 && stickingTangent <= mu * stickingNormal;
     // work done on the relative motion: j . (u + du/2) <= 0 means no kinetic energy gained
     // (zero for a frictionless elastic hit; the tolerance absorbs round-off of that zero)
-    const bool dissipative =
-        sticking.dot(uRel + 0.5 * deltaU) <= 1e-12 * sticking.norm() * uRel.norm();
+    const bool dissipative = sticking.dot(uRel + 0.5 * deltaU) <= 1e-12 * sticking.norm() * uRel.norm();
     if (insideCone && dissipative)
     {
         return sticking;

@@ -69,8 +69,8 @@ Real midStepCorrection(const RigidBody& a, const RigidBody& b, Real un, const Ve
     return weight * 0.5 * settings.dt * an;
 }
 
-const ContactPoint* deepestApproaching(const RigidBody& a, const Pose& poseA, const RigidBody& b,
-                                       const Pose& poseB, Real threshold, const std::vector<ContactPoint>& points,
+const ContactPoint* deepestApproaching(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
+                                       Real threshold, const std::vector<ContactPoint>& points,
                                        const PassSettings& settings)
 {
     const ContactPoint* deepest = nullptr;
@@ -103,7 +103,8 @@ Real leastDistance(const std::vector<ContactPoint>& points)
 void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings& settings,
                       std::vector<ContactPoint>& scratch, ContactPoint& contact, Pose& poseA, Pose& poseB)
 {
-    const auto distanceAt = [&](Real fraction, Pose& pa, Pose& pb) {
+    const auto distanceAt = [&](Real fraction, Pose& pa, Pose& pb)
+    {
         pa = poseAtFraction(a, settings, fraction);
         pb = poseAtFraction(b, settings, fraction);
         scratch.clear();
@@ -163,15 +164,16 @@ ContactBody contactBody(const RigidBody& body, const Vec3& point, const Pose& po
     return {body.invMass, body.invInertiaWorld, point - pose.position};
 }
 
-bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact, const Pose& poseA,
-                         const Pose& poseB, Real eps, Real mu, const PassSettings& settings)
+bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact, const Pose& poseA, const Pose& poseB,
+                         Real eps, Real mu, const PassSettings& settings)
 {
     const ContactBody ca = contactBody(a, contact.point, poseA);
     const ContactBody cb = contactBody(b, contact.point, poseB);
     const Mat3 K = collisionMatrix(ca, cb);
     const Vec3 uRel = relativeVelocity(a, poseA, b, poseB, contact, settings);
-    if (eps > 0.0 && -(a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB)).dot(contact.normal) <
-                         settings.restitutionThreshold)
+    if (eps > 0.0 &&
+        -(a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB)).dot(contact.normal) <
+            settings.restitutionThreshold)
     {
         eps = 0.0;
     }

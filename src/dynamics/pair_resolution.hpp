@@ -22,8 +22,8 @@ struct PassSettings
     bool predictWithAcceleration = false;
     bool midStepRestitution = false;
     bool timeOfImpactGeometry = false;
-    Real threshold = 0.0;        ///< points with phi below this count as touching
-    int pairIterations = 20;     ///< cap on impulses per pair per sweep
+    Real threshold = 0.0;            ///< points with phi below this count as touching
+    int pairIterations = 20;         ///< cap on impulses per pair per sweep
     Real restitutionThreshold = 0.0; ///< approach speeds below this get restitution 0
 };
 

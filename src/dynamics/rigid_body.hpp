@@ -21,10 +21,10 @@ struct RigidBody
     Shape shape;
     MaterialId material;
     bool dynamic = true;
-    Real mass = 0.0;                          ///< infinite for static bodies
-    Real invMass = 0.0;                       ///< zero for static bodies
-    Vec3 principalInertia = Vec3::Zero();     ///< body frame
-    Vec3 invPrincipalInertia = Vec3::Zero();  ///< body frame; zero for static bodies
+    Real mass = 0.0;                         ///< infinite for static bodies
+    Real invMass = 0.0;                      ///< zero for static bodies
+    Vec3 principalInertia = Vec3::Zero();    ///< body frame
+    Vec3 invPrincipalInertia = Vec3::Zero(); ///< body frame; zero for static bodies
     Real boundingRadius = 0.0;
 
     // state at time n
@@ -39,9 +39,9 @@ struct RigidBody
     Vec3 angularVelocity = Vec3::Zero(); ///< invInertiaWorld * angularMomentum
 
     // per-step scratch
-    Pose predicted; ///< pose at the end of the step under the velocities of the current pass
-    int level = -1;       ///< contact-graph level this step; -1 for static bodies
-    bool frozen = false;  ///< treated as infinite mass during shock propagation
+    Pose predicted;      ///< pose at the end of the step under the velocities of the current pass
+    int level = -1;      ///< contact-graph level this step; -1 for static bodies
+    bool frozen = false; ///< treated as infinite mass during shock propagation
 
     /// Static, or frozen by shock propagation: impulses do not move it.
     bool immovable() const { return !dynamic || frozen; }

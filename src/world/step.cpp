@@ -184,7 +184,8 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
         bodyPairs[pairs[k].a].push_back(k);
         bodyPairs[pairs[k].b].push_back(k);
     }
-    const auto deepest = [&](const RigidBody& probe, const Pose& probePose, const RigidBody& other) {
+    const auto deepest = [&](const RigidBody& probe, const Pose& probePose, const RigidBody& other)
+    {
         points.clear();
         collideShapes(probe.shape, probePose, other.shape, other.predicted, 0.0, points);
         Real least = 0.0;
@@ -237,9 +238,9 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
         order[k] = k;
         pairLevels[k] = std::max(bodies[pairs[k].a].level, bodies[pairs[k].b].level);
     }
-    std::sort(order.begin(), order.end(), [&](std::uint32_t l, std::uint32_t r) {
-        return pairLevels[l] < pairLevels[r] || (pairLevels[l] == pairLevels[r] && l < r);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t l, std::uint32_t r)
+              { return pairLevels[l] < pairLevels[r] || (pairLevels[l] == pairLevels[r] && l < r); });
     std::vector<BodyPair> sortedPairs(pairs.size());
     std::vector<PairCoefficients> sortedCoefficients(pairs.size());
     std::vector<int> sortedLevels(pairs.size());
@@ -362,8 +363,8 @@ int WorldImpl::sweepLevels(Real eps, bool freezeLowerLevels, const PassSettings&
             const BodyPair& pair = pairs[k];
             if (bodies[pair.a].level == level && bodies[pair.b].level == level)
             {
-                applied += resolvePair(bodies[pair.a], bodies[pair.b], eps, pairCoefficients[k].friction, settings,
-                                       points);
+                applied +=
+                    resolvePair(bodies[pair.a], bodies[pair.b], eps, pairCoefficients[k].friction, settings, points);
             }
         }
         first = last;

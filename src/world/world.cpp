@@ -88,8 +88,7 @@ MaterialId World::createMaterial(const Material& material)
 
 void World::setPairCoefficients(MaterialId a, MaterialId b, const PairCoefficients& coefficients)
 {
-    require(a.index < m_impl->materials.size() && b.index < m_impl->materials.size(), "materials",
-            "unknown material");
+    require(a.index < m_impl->materials.size() && b.index < m_impl->materials.size(), "materials", "unknown material");
     require(std::isfinite(coefficients.restitution) && coefficients.restitution >= 0.0 &&
                 coefficients.restitution <= 1.0,
             "restitution", "must be in [0, 1]");
@@ -144,8 +143,8 @@ BodyId World::createBody(const BodyDef& def)
         require(body.principalInertia.allFinite() && body.invPrincipalInertia.allFinite(),
                 def.mass > 0.0 ? "mass" : "density", "gives an inertia that is not a positive finite number");
         // L = I w in the world frame
-        body.angularMomentum = body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() *
-                               def.angularVelocity;
+        body.angularMomentum =
+            body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() * def.angularVelocity;
         body.linearVelocity = def.linearVelocity;
     }
     else
@@ -267,7 +266,8 @@ std::uint64_t World::stateHash() const
 {
     // FNV-1a over the bits of every dynamic body's primary state
     std::uint64_t hash = 1469598103934665603ULL;
-    const auto mix = [&](const double* values, int count) {
+    const auto mix = [&](const double* values, int count)
+    {
         for (int i = 0; i < count; ++i)
         {
             std::uint64_t bits = 0;

@@ -18,7 +18,7 @@ namespace impulse
 
 class WorldImpl
 {
-public:
+  public:
     WorldDef def;
     std::vector<Material> materials;
     std::map<std::pair<std::uint32_t, std::uint32_t>, PairCoefficients> pairOverrides; ///< key: (lower, higher)
@@ -31,16 +31,16 @@ public:
     std::vector<PairCoefficients> pairCoefficients; ///< parallel to pairs
     std::vector<ContactPoint> points;
     BroadPhase broadPhase;
-    std::vector<int> pairLevels;                    ///< parallel to pairs: max level of the two bodies
-    std::vector<SupportEdge> supportEdges;          ///< contact graph of this step
+    std::vector<int> pairLevels;                       ///< parallel to pairs: max level of the two bodies
+    std::vector<SupportEdge> supportEdges;             ///< contact graph of this step
     std::vector<std::vector<std::uint32_t>> bodyPairs; ///< per body: indices into pairs
-    std::vector<std::uint32_t> levelBodies;          ///< scratch of sweepLevels
-    std::vector<Support> supports;                   ///< scratch of sweepLevels
+    std::vector<std::uint32_t> levelBodies;            ///< scratch of sweepLevels
+    std::vector<Support> supports;                     ///< scratch of sweepLevels
 
     PairCoefficients coefficients(MaterialId a, MaterialId b) const;
     void step(const StepOptions& options);
 
-private:
+  private:
     // the two orders of the step (step.cpp), each a list of the stages below
     void stepGuendelman(const StepOptions& options);
     void stepTraditional(const StepOptions& options);

@@ -21,8 +21,7 @@ std::string trajectoryBytes(const std::string& name, Real duration)
     writer.writeHeader();
     writer.writeSample(0.0, scene.world, scene.dynamicBodies);
     runScene(
-        scene, -1.0, [&](Real t, const World& world) { writer.writeSample(t, world, scene.dynamicBodies); },
-        duration);
+        scene, -1.0, [&](Real t, const World& world) { writer.writeSample(t, world, scene.dynamicBodies); }, duration);
     return out.str();
 }
 

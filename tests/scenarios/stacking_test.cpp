@@ -15,9 +15,9 @@ namespace
 
 struct StackRecord
 {
-    Real topDisplacement = 0.0;       ///< largest distance of the last body from its start
-    Real largestDrift = 0.0;          ///< largest distance of any body from where it was at settleTime
-    Real fastestAfterSettling = 0.0;  ///< largest speed of any body after settleTime
+    Real topDisplacement = 0.0;      ///< largest distance of the last body from its start
+    Real largestDrift = 0.0;         ///< largest distance of any body from where it was at settleTime
+    Real fastestAfterSettling = 0.0; ///< largest speed of any body after settleTime
     Real fastestAtEnd = 0.0;
 };
 
@@ -29,7 +29,8 @@ StackRecord runStack(io::Scene& scene, Real dt, Real settleTime, Real duration =
     std::vector<Vec3> settled;
     runScene(
         scene, dt,
-        [&](Real t, const World& world) {
+        [&](Real t, const World& world)
+        {
             record.topDisplacement = std::max(record.topDisplacement, (world.state(top).position - topStart).norm());
             if (t + 0.5 * scene.options.dt < settleTime)
             {
@@ -116,9 +117,8 @@ TEST(Stacking, SeesawThrowsTheLightCubeUp)
     const BodyId heavy = scene.dynamicBodies[2];
     const Real lightStart = scene.world.state(light).position.z();
     Real lightHighest = lightStart;
-    runScene(scene, 1e-3, [&](Real, const World& world) {
-        lightHighest = std::max(lightHighest, world.state(light).position.z());
-    });
+    runScene(scene, 1e-3,
+             [&](Real, const World& world) { lightHighest = std::max(lightHighest, world.state(light).position.z()); });
     // the heavy side goes down: the 20 kg cube ends on the ground beside the plank's low end
     EXPECT_LT(scene.world.state(heavy).position.z(), 0.25);
     EXPECT_GT(lightHighest - lightStart, 0.1);

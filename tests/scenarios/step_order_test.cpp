@@ -24,24 +24,26 @@ std::vector<Real> ballApexes(Scheme scheme)
     std::vector<Real> apexes;
     Real previousVz = 0.0;
     Real previousZ = scene.world.state(ball).position.z();
-    runScene(scene, -1.0, [&](Real, const World& world) {
-        const BodyState s = world.state(ball);
-        if (previousVz > 0.0 && s.linearVelocity.z() <= 0.0)
-        {
-            apexes.push_back(std::max(previousZ, s.position.z()));
-        }
-        previousVz = s.linearVelocity.z();
-        previousZ = s.position.z();
-    });
+    runScene(scene, -1.0,
+             [&](Real, const World& world)
+             {
+                 const BodyState s = world.state(ball);
+                 if (previousVz > 0.0 && s.linearVelocity.z() <= 0.0)
+                 {
+                     apexes.push_back(std::max(previousZ, s.position.z()));
+                 }
+                 previousVz = s.linearVelocity.z();
+                 previousZ = s.position.z();
+             });
     return apexes;
 }
 
 struct BlockRecord
 {
-    Real displacement = 0.0;   ///< largest distance of the centre from its start
-    Real highest = -1.0;       ///< largest rise of the centre along the incline normal
-    Real lowest = 1.0;         ///< most negative rise (sinking into the incline)
-    int bouncingSteps = 0;     ///< steps that end with the block moving away at >= 10 % of g dt
+    Real displacement = 0.0;      ///< largest distance of the centre from its start
+    Real highest = -1.0;          ///< largest rise of the centre along the incline normal
+    Real lowest = 1.0;            ///< most negative rise (sinking into the incline)
+    int bouncingSteps = 0;        ///< steps that end with the block moving away at >= 10 % of g dt
     Real fastestSeparation = 0.0; ///< largest speed away from the incline at the end of a step
     int steps = 0;
 };
@@ -58,7 +60,8 @@ BlockRecord runBlock(Scheme scheme, Real duration, Real restitutionThreshold = 0
     BlockRecord record;
     runScene(
         scene, -1.0,
-        [&](Real, const World& world) {
+        [&](Real, const World& world)
+        {
             const BodyState s = world.state(block);
             const Real rise = (s.position - start).dot(normal);
             record.displacement = std::max(record.displacement, (s.position - start).norm());

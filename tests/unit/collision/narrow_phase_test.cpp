@@ -3,7 +3,6 @@
 // against hand-computed values, the swapped-order convention, and completeness of the box-box
 // sampling against brute force.
 #include "collision/narrow_phase.hpp"
-
 #include "geometry/signed_distance.hpp"
 
 #include <gtest/gtest.h>
@@ -43,8 +42,8 @@ Quat rotation(Real angle, const Vec3& axis)
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, Real tol = kTol)
 {
-    EXPECT_LT((actual - expected).norm(), tol) << "actual   " << actual.transpose() << "\nexpected "
-                                               << expected.transpose();
+    EXPECT_LT((actual - expected).norm(), tol)
+        << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
 Real angleBetween(const Vec3& u, const Vec3& v)
@@ -377,8 +376,8 @@ TEST(NarrowPhase, CrossedEdgesWithNoCornerInsideReportVerticalNormalAndTrueDepth
             vertical = vertical || (s.phi < 0.0 && angleBetween(s.normal, Vec3::UnitZ()) < 1e-9);
         }
         EXPECT_TRUE(vertical) << "no penetrating sample with the edge-edge normal +z; first normal "
-                              << samples[0].normal.transpose() << ", "
-                              << angleBetween(samples[0].normal, Vec3::UnitZ()) << " rad from +z";
+                              << samples[0].normal.transpose() << ", " << angleBetween(samples[0].normal, Vec3::UnitZ())
+                              << " rad from +z";
     }
 }
 
@@ -502,8 +501,8 @@ TEST(NarrowPhase, ApproachingBoxesFirstTouchShallowlyWithPointsInTheOverlap)
         ++touched;
         for (const ContactPoint& c : samples)
         {
-            SCOPED_TRACE(testing::Message() << "trial " << trial << " point " << c.point.transpose() << " phi "
-                                            << c.phi);
+            SCOPED_TRACE(testing::Message()
+                         << "trial " << trial << " point " << c.point.transpose() << " phi " << c.phi);
             EXPECT_GE(c.phi, -kStep - kRoundOff) << "deeper than the last step can have made it";
             EXPECT_LE(boxPhiWorld(a, poseA, c.point), kRoundOff);
             EXPECT_LE(boxPhiWorld(b, poseB, c.point), kRoundOff);
@@ -556,8 +555,8 @@ TEST(NarrowPhase, BoxBoxReportsAtLeastTheDepthOfEveryCornerAndEdgePoint)
                     for (int k = 0; k < kEdgeSamples; ++k)
                     {
                         const Real t = static_cast<Real>(k) / (kEdgeSamples - 1);
-                        bruteForce = std::min(bruteForce, boxPhiWorld(boxes[1 - self], poses[1 - self],
-                                                                      start + t * (end - start)));
+                        bruteForce = std::min(bruteForce,
+                                              boxPhiWorld(boxes[1 - self], poses[1 - self], start + t * (end - start)));
                     }
                 }
             }

@@ -37,8 +37,8 @@ TEST(ContactGraph, LintelAcrossUnequalStacksLiesAboveBothTops)
 {
     // left stack 1-2, right stack 3-4-5-6, lintel 7 on 2 and 6: breadth-first distance from the
     // ground would give the lintel level 2, below box 6 (level 3); the lintel must be above it
-    const std::vector<int> levels = computeContactLevels(
-        groundAnd(7), {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 5}, {5, 6}, {2, 7}, {6, 7}});
+    const std::vector<int> levels =
+        computeContactLevels(groundAnd(7), {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 5}, {5, 6}, {2, 7}, {6, 7}});
     EXPECT_EQ(levels[6], 3);
     EXPECT_EQ(levels[7], 4);
     EXPECT_GT(levels[7], levels[2]);

@@ -2,7 +2,6 @@
 // The contact impulse of GBF03 sec. 6: frictionless, sticking and sliding cases against closed forms,
 // the energy safeguard over random contacts, and the collision matrix against the analytic sphere.
 #include "dynamics/impulse.hpp"
-
 #include "dynamics/integrate.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -23,8 +22,8 @@ constexpr Real kTol = 1e-12;
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, Real tol = kTol)
 {
-    EXPECT_LT((actual - expected).norm(), tol) << "actual   " << actual.transpose() << "\nexpected "
-                                               << expected.transpose();
+    EXPECT_LT((actual - expected).norm(), tol)
+        << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
 ContactBody pointMass(Real mass)
@@ -201,8 +200,8 @@ TEST(Impulse, CollisionMatrixPredictsPointVelocityChangeOfApplyImpulse)
     const Vec3 p(0.0, 0.1, 0.05);
     const Vec3 j(0.3, -0.7, 1.1);
     const Vec3 before = a.pointVelocity(p, a.pose()) - b.pointVelocity(p, b.pose());
-    const Mat3 k = collisionMatrix({a.invMass, a.invInertiaWorld, p - a.position},
-                                   {b.invMass, b.invInertiaWorld, p - b.position});
+    const Mat3 k =
+        collisionMatrix({a.invMass, a.invInertiaWorld, p - a.position}, {b.invMass, b.invInertiaWorld, p - b.position});
     applyImpulse(a, j, p - a.position);
     applyImpulse(b, -j, p - b.position);
     const Vec3 after = a.pointVelocity(p, a.pose()) - b.pointVelocity(p, b.pose());
@@ -249,7 +248,8 @@ TEST(Impulse, CollisionMatrixOfStaticPartnerIsTheDynamicBodysAlone)
 {
     std::mt19937 rng(5u);
     const ContactBody a = randomBody(rng);
-    const Mat3 ka = a.invMass * Mat3::Identity() - crossMatrix(a.leverArm) * a.invInertiaWorld * crossMatrix(a.leverArm);
+    const Mat3 ka =
+        a.invMass * Mat3::Identity() - crossMatrix(a.leverArm) * a.invInertiaWorld * crossMatrix(a.leverArm);
     const ContactBody ground{0.0, Mat3::Zero(), Vec3(0.3, 0.2, -5.0)};
     expectVecNear(collisionMatrix(a, ground) * Vec3::UnitX(), ka * Vec3::UnitX(), 1e-14);
     expectVecNear(collisionMatrix(a, ground) * Vec3::UnitY(), ka * Vec3::UnitY(), 1e-14);

@@ -18,8 +18,8 @@ namespace
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, Real tol)
 {
-    EXPECT_LT((actual - expected).norm(), tol) << "actual   " << actual.transpose() << "\nexpected "
-                                               << expected.transpose();
+    EXPECT_LT((actual - expected).norm(), tol)
+        << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
 void expectMatNear(const Mat3& actual, const Mat3& expected, Real tol)
@@ -43,7 +43,7 @@ TEST(Integrate, RotatesByAngleSpeedTimesStepAboutAngularVelocity)
 {
     const Quat q0 = Quat(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 3.0).normalized()));
     const Pose start = Pose::from(Vec3(0.1, 0.2, 0.3), q0);
-    const Vec3 w(0.3, -0.4, 1.2); // |w| = 1.3
+    const Vec3 w(0.3, -0.4, 1.2);          // |w| = 1.3
     for (const Real dt : {1e-3, 0.1, 3.0}) // the last turns by 3.9 rad, past pi
     {
         SCOPED_TRACE(testing::Message() << "dt " << dt);
@@ -236,8 +236,8 @@ TEST(Integrate, SpinAboutIntermediateAxisFlips)
     // = 3.07/s: from 0.002 to order 1 takes ~ln(500)/lambda = 2 s, so the first flip comes within a
     // few seconds and, the motion being periodic, more follow in 10 s
     const Vec3 inertia = unitInertia(Box{Vec3(0.5, 0.3, 0.1)});
-    const Real lambda = 5.0 * std::sqrt((inertia.y() - inertia.x()) * (inertia.z() - inertia.y()) /
-                                        (inertia.x() * inertia.z()));
+    const Real lambda =
+        5.0 * std::sqrt((inertia.y() - inertia.x()) * (inertia.z() - inertia.y()) / (inertia.x() * inertia.z()));
     ASSERT_NEAR(lambda, 3.07, 0.01);
     const SpinRecord r = spin(1, kDuration, kDt);
     EXPECT_GT(r.firstFlip, 0.0) << "w along the intermediate axis never changed sign";
@@ -329,7 +329,8 @@ TEST(Integrate, OpposedImpulsesConserveMomentumAboutAnyPoint)
     b.invMass = 0.25;
     b.linearVelocity = Vec3(-0.3, 0.2, 0.4);
     updateDerivedQuantities(b);
-    const auto momenta = [&]() {
+    const auto momenta = [&]()
+    {
         const Vec3 p = a.mass * a.linearVelocity + b.mass * b.linearVelocity;
         const Vec3 l = a.angularMomentum + a.position.cross(a.mass * a.linearVelocity) + b.angularMomentum +
                        b.position.cross(b.mass * b.linearVelocity);

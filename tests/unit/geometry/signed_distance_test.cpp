@@ -19,8 +19,8 @@ constexpr Real kTol = 1e-14;
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, Real tol)
 {
-    EXPECT_LT((actual - expected).norm(), tol) << "actual   " << actual.transpose() << "\nexpected "
-                                               << expected.transpose();
+    EXPECT_LT((actual - expected).norm(), tol)
+        << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
 // ---- sphere ----
@@ -96,12 +96,9 @@ TEST(SignedDistance, BoxInsideGradientIsNearestFaceNormal)
         Vec3 normal;
     };
     const Case cases[] = {
-        {Vec3(0.5, 0.0, 0.0), -0.5, Vec3::UnitX()},
-        {Vec3(-0.7, 0.5, 1.0), -0.3, -Vec3::UnitX()},
-        {Vec3(0.0, -1.5, 0.0), -0.5, -Vec3::UnitY()},
-        {Vec3(0.1, 1.8, -2.5), -0.2, Vec3::UnitY()},
-        {Vec3(0.0, 0.0, 2.8), -0.2, Vec3::UnitZ()},
-        {Vec3(0.5, 1.0, -2.9), -0.1, -Vec3::UnitZ()},
+        {Vec3(0.5, 0.0, 0.0), -0.5, Vec3::UnitX()},   {Vec3(-0.7, 0.5, 1.0), -0.3, -Vec3::UnitX()},
+        {Vec3(0.0, -1.5, 0.0), -0.5, -Vec3::UnitY()}, {Vec3(0.1, 1.8, -2.5), -0.2, Vec3::UnitY()},
+        {Vec3(0.0, 0.0, 2.8), -0.2, Vec3::UnitZ()},   {Vec3(0.5, 1.0, -2.9), -0.1, -Vec3::UnitZ()},
     };
     for (const Case& c : cases)
     {
@@ -133,8 +130,8 @@ TEST(SignedDistance, BoxEdgeAndCornerPointsAreZeroWithAnAdjacentFaceNormal)
 {
     // on an edge or a corner the gradient is one of the adjacent face normals: a unit axis vector
     // whose sign agrees with the point
-    const Vec3 points[] = {Vec3(1.0, 2.0, 0.0), Vec3(-1.0, 0.5, 3.0), Vec3(0.0, -2.0, -3.0),
-                           Vec3(1.0, -2.0, 3.0), Vec3(-1.0, -2.0, -3.0)};
+    const Vec3 points[] = {Vec3(1.0, 2.0, 0.0), Vec3(-1.0, 0.5, 3.0), Vec3(0.0, -2.0, -3.0), Vec3(1.0, -2.0, 3.0),
+                           Vec3(-1.0, -2.0, -3.0)};
     for (const Vec3& p : points)
     {
         SCOPED_TRACE(testing::Message() << "point " << p.transpose());

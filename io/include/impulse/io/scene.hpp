@@ -15,7 +15,7 @@ namespace impulse::io
 /// is wrong, e.g. "ball.json: /bodies/1/shape/radius: must be positive, got -0.1".
 class SceneError : public std::runtime_error
 {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -25,9 +25,9 @@ struct Scene
     std::string name;
     World world;
     StepOptions options;
-    Real duration = 0.0;                 ///< seconds
-    std::vector<BodyId> dynamicBodies;   ///< in file order; trajectory body k is dynamicBodies[k]
-    std::vector<std::string> bodyNames;  ///< per world body, "" where the file names none
+    Real duration = 0.0;                ///< seconds
+    std::vector<BodyId> dynamicBodies;  ///< in file order; trajectory body k is dynamicBodies[k]
+    std::vector<std::string> bodyNames; ///< per world body, "" where the file names none
 };
 
 /// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.

@@ -15,13 +15,13 @@ namespace impulse::io
 /// bytes.
 class TrajectoryWriter
 {
-public:
+  public:
     explicit TrajectoryWriter(std::ostream& out);
     void writeHeader();
     /// One row per body in `bodies`, numbered 0.. in that order, at time t.
     void writeSample(Real t, const World& world, const std::vector<BodyId>& bodies);
 
-private:
+  private:
     std::ostream& m_out;
 };
 
