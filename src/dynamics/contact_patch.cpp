@@ -153,6 +153,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     std::vector<Vec3> velocity(patch.size());
     Eigen::MatrixXd coupling(3 * n, 3 * n);
     Eigen::VectorXd target(3 * n);
+    Real meanApproach = 0.0;
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
         const ContactPoint& contact = patch[k].contact;
@@ -160,9 +161,16 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         lever[k] = contact.point - body.predicted.position;
         otherLever[k] = contact.point - other.predicted.position;
         velocity[k] = relativeVelocity(body, body.predicted, other, other.predicted, contact, settings);
-        const Real un = velocity[k].dot(contact.normal);
-        target.segment<3>(3 * static_cast<Eigen::Index>(k)) =
-            -(1.0 + eps) * un * contact.normal - (velocity[k] - un * contact.normal);
+        meanApproach += velocity[k].dot(contact.normal) / static_cast<Real>(patch.size());
+    }
+    for (std::size_t k = 0; k < patch.size(); ++k)
+    {
+        const Vec3& normal = patch[k].contact.normal;
+        // restitution eps >= 0 reflects each point's own approach (an elastic landing keeps its
+        // spin); a negative eps of the contact ramp keeps |eps| of the patch's mean approach at
+        // every point, so each sweep removes the tilt and slip outright and shares only the rest
+        const Real keep = eps >= 0.0 ? -eps * velocity[k].dot(normal) : -eps * meanApproach;
+        target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep * normal - velocity[k];
     }
     // W_ik: through the body always, through the other body when both points touch the same one
     for (std::size_t i = 0; i < patch.size(); ++i)
@@ -187,7 +195,13 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         velocityScale += u.norm();
     }
-    if (!solved.allFinite() || (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
+    // Against several partners moving differently the targets may not be reachable together; as a
+    // block of a Gauss-Seidel sweep the body then takes the least-squares compromise, and later
+    // sweeps (the partners' turns) refine it.
+    const bool severalPartners =
+        std::any_of(patch.begin(), patch.end(), [&](const PatchPoint& p) { return p.other != patch[0].other; });
+    if (!solved.allFinite() ||
+        (!severalPartners && (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale))
     {
         return false; // the targets are not reachable together
     }
