@@ -133,17 +133,17 @@ Mat3 invInertiaOf(const RigidBody& body)
 
 bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, const PassSettings& settings)
 {
-    // With several movable partners the patch is solved as one block of a Gauss-Seidel sweep over
-    // bodies: for this body's six degrees of freedom, with the partners held as they move now; the
-    // reactions are applied to them afterwards and later sweeps revisit them. (Coupling the
-    // partners in would let the re-spreading below shift load between them, and their motion.)
+    // With several movable partners the re-spreading below would shift load between them, and
+    // their motion with it: that case is left to the projected solve, which moves them all.
     const RigidBody* movablePartner = nullptr;
-    bool severalMovable = false;
     for (const PatchPoint& point : patch)
     {
         if (!point.other->immovable())
         {
-            severalMovable = severalMovable || (movablePartner != nullptr && movablePartner != point.other);
+            if (movablePartner != nullptr && movablePartner != point.other)
+            {
+                return false;
+            }
             movablePartner = point.other;
         }
     }
@@ -178,7 +178,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         for (std::size_t k = 0; k < patch.size(); ++k)
         {
             Mat3 block = couplingMatrix(invMassOf(body), invInertiaOf(body), lever[i], lever[k]);
-            if (patch[i].other == patch[k].other && !severalMovable)
+            if (patch[i].other == patch[k].other)
             {
                 const RigidBody& other = *patch[i].other;
                 block += couplingMatrix(invMassOf(other), invInertiaOf(other), otherLever[i], otherLever[k]);
@@ -195,13 +195,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         velocityScale += u.norm();
     }
-    // Against several partners moving differently the targets may not be reachable together; as a
-    // block of a Gauss-Seidel sweep the body then takes the least-squares compromise, and later
-    // sweeps (the partners' turns) refine it.
-    const bool severalPartners =
-        std::any_of(patch.begin(), patch.end(), [&](const PatchPoint& p) { return p.other != patch[0].other; });
-    if (!solved.allFinite() ||
-        (!severalPartners && (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale))
+    if (!solved.allFinite() || (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
     {
         return false; // the targets are not reachable together
     }
@@ -234,6 +228,142 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         }
     }
     return true;
+}
+
+bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps,
+                                const PassSettings& settings)
+{
+    if (patch.empty())
+    {
+        return false;
+    }
+    constexpr int kIterations = 30; // a body and its supports on at most 8 points: converged well before
+    // local copies of the velocities of the body (index 0) and of each distinct partner
+    struct Motion
+    {
+        RigidBody* body;
+        Vec3 v;
+        Vec3 w;
+        Real invMass;
+        Mat3 invInertia;
+    };
+    std::vector<Motion> motions{
+        {&body, body.linearVelocity, body.angularVelocity, invMassOf(body), invInertiaOf(body)}};
+    struct Row
+    {
+        std::size_t partner = 0; // index into motions
+        Vec3 lever;              // from the body's centre
+        Vec3 partnerLever;       // from the partner's centre
+        Vec3 normal;
+        Vec3 tangent1;
+        Vec3 tangent2;
+        Real correction = 0.0; // mid-step term of relativeVelocity, held fixed
+        Real keep = 0.0;       // target normal velocity
+        Real normalMass = 0.0;
+        Real tangentMass1 = 0.0;
+        Real tangentMass2 = 0.0;
+        Real load = 0.0;
+        Vec3 friction = Vec3::Zero();
+    };
+    const std::size_t n = patch.size();
+    std::vector<Row> rows(n);
+    std::vector<Real> approach(n);
+    Real meanApproach = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        const ContactPoint& contact = patch[k].contact;
+        RigidBody& other = *patch[k].other;
+        Row& row = rows[k];
+        row.partner = 0;
+        for (std::size_t m = 1; m < motions.size(); ++m)
+        {
+            row.partner = motions[m].body == &other ? m : row.partner;
+        }
+        if (row.partner == 0)
+        {
+            motions.push_back(
+                {&other, other.linearVelocity, other.angularVelocity, invMassOf(other), invInertiaOf(other)});
+            row.partner = motions.size() - 1;
+        }
+        row.lever = contact.point - body.predicted.position;
+        row.partnerLever = contact.point - other.predicted.position;
+        row.normal = contact.normal;
+        row.tangent1 = row.normal.unitOrthogonal();
+        row.tangent2 = row.normal.cross(row.tangent1);
+        const Vec3 raw =
+            body.pointVelocity(contact.point, body.predicted) - other.pointVelocity(contact.point, other.predicted);
+        approach[k] = relativeVelocity(body, body.predicted, other, other.predicted, contact, settings).dot(row.normal);
+        row.correction = approach[k] - raw.dot(row.normal);
+        meanApproach += approach[k] / static_cast<Real>(n);
+        const Motion& partner = motions[row.partner];
+        const Mat3 K = couplingMatrix(motions[0].invMass, motions[0].invInertia, row.lever, row.lever) +
+                       couplingMatrix(partner.invMass, partner.invInertia, row.partnerLever, row.partnerLever);
+        row.normalMass = 1.0 / row.normal.dot(K * row.normal);
+        row.tangentMass1 = 1.0 / row.tangent1.dot(K * row.tangent1);
+        row.tangentMass2 = 1.0 / row.tangent2.dot(K * row.tangent2);
+    }
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        rows[k].keep = eps >= 0.0 ? -eps * approach[k] : -eps * meanApproach;
+    }
+
+    const auto relative = [&](const Row& row)
+    {
+        const Motion& a = motions[0];
+        const Motion& b = motions[row.partner];
+        return Vec3(a.v + a.w.cross(row.lever) - b.v - b.w.cross(row.partnerLever) + row.correction * row.normal);
+    };
+    const auto push = [&](const Row& row, const Vec3& j)
+    {
+        Motion& a = motions[0];
+        Motion& b = motions[row.partner];
+        a.v += a.invMass * j;
+        a.w += a.invInertia * row.lever.cross(j);
+        b.v -= b.invMass * j;
+        b.w -= b.invInertia * row.partnerLever.cross(j);
+    };
+    for (int iteration = 0; iteration < kIterations; ++iteration)
+    {
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            Row& row = rows[k];
+            const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - relative(row).dot(row.normal)));
+            push(row, (load - row.load) * row.normal);
+            row.load = load;
+
+            const Vec3 u = relative(row);
+            Vec3 friction = row.friction - row.tangentMass1 * u.dot(row.tangent1) * row.tangent1 -
+                            row.tangentMass2 * u.dot(row.tangent2) * row.tangent2;
+            const Real limit = patch[k].friction * row.load;
+            if (friction.norm() > limit)
+            {
+                friction *= limit / friction.norm();
+            }
+            push(row, friction - row.friction);
+            row.friction = friction;
+        }
+    }
+
+    bool applied = false;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        const Vec3 j = rows[k].load * rows[k].normal + rows[k].friction;
+        if (j.isZero(0.0))
+        {
+            continue;
+        }
+        applied = true;
+        if (!body.immovable())
+        {
+            applyImpulse(body, j, rows[k].lever);
+        }
+        RigidBody& other = *patch[k].other;
+        if (!other.immovable())
+        {
+            applyImpulse(other, -j, rows[k].partnerLever);
+        }
+    }
+    return applied;
 }
 
 } // namespace impulse

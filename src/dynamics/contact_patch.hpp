@@ -26,4 +26,12 @@ struct PatchPoint
 /// false and changes nothing otherwise. Bodies are placed at their predicted poses.
 bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, const PassSettings& settings);
 
+/// The patch as a small complementarity problem, for when it does not stick as a whole (a block on
+/// two supports that spread, a body tipping off one of them): projected Gauss-Seidel with
+/// accumulated impulses, each point's load kept >= 0 and its friction within mu times that load,
+/// so points may lift or slide. The partners are held as they move while the body's impulses are
+/// found, then receive the reactions. Returns true if any impulse was applied.
+bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps,
+                                const PassSettings& settings);
+
 } // namespace impulse

@@ -324,7 +324,8 @@ int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Rea
                           scratch);
             collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
         }
-        if (patch.size() > 1 && patch.size() <= kMaxPatchPoints && applyPatchImpulse(body, patch, eps, settings))
+        if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
+            (applyPatchImpulse(body, patch, eps, settings) || applyProjectedPatchImpulse(body, patch, eps, settings)))
         {
             predictBody(body, settings);
             for (const Support& support : supports)
