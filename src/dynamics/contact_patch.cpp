@@ -129,6 +129,30 @@ Mat3 invInertiaOf(const RigidBody& body)
     return body.immovable() ? Mat3::Zero() : body.invInertiaWorld;
 }
 
+// The coupled collision matrix of a patch (3 rows and columns per point): W_ik maps an impulse at
+// point k to the relative velocity change at point i, through the body always and through the
+// partner when both points touch the same one. Levers are from the body's and partner's centres.
+Eigen::MatrixXd patchCoupling(const RigidBody& body, const std::vector<PatchPoint>& patch,
+                              const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever)
+{
+    const auto n = static_cast<Eigen::Index>(patch.size());
+    Eigen::MatrixXd coupling(3 * n, 3 * n);
+    for (std::size_t i = 0; i < patch.size(); ++i)
+    {
+        for (std::size_t k = 0; k < patch.size(); ++k)
+        {
+            Mat3 block = couplingMatrix(invMassOf(body), invInertiaOf(body), lever[i], lever[k]);
+            if (patch[i].other == patch[k].other)
+            {
+                const RigidBody& other = *patch[i].other;
+                block += couplingMatrix(invMassOf(other), invInertiaOf(other), partnerLever[i], partnerLever[k]);
+            }
+            coupling.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(k)) = block;
+        }
+    }
+    return coupling;
+}
+
 } // namespace
 
 bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, const PassSettings& settings)
@@ -151,7 +175,6 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     std::vector<Vec3> lever(patch.size());
     std::vector<Vec3> otherLever(patch.size());
     std::vector<Vec3> velocity(patch.size());
-    Eigen::MatrixXd coupling(3 * n, 3 * n);
     Eigen::VectorXd target(3 * n);
     Real meanApproach = 0.0;
     for (std::size_t k = 0; k < patch.size(); ++k)
@@ -172,20 +195,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         const Real keep = eps >= 0.0 ? -eps * velocity[k].dot(normal) : -eps * meanApproach;
         target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep * normal - velocity[k];
     }
-    // W_ik: through the body always, through the other body when both points touch the same one
-    for (std::size_t i = 0; i < patch.size(); ++i)
-    {
-        for (std::size_t k = 0; k < patch.size(); ++k)
-        {
-            Mat3 block = couplingMatrix(invMassOf(body), invInertiaOf(body), lever[i], lever[k]);
-            if (patch[i].other == patch[k].other)
-            {
-                const RigidBody& other = *patch[i].other;
-                block += couplingMatrix(invMassOf(other), invInertiaOf(other), otherLever[i], otherLever[k]);
-            }
-            coupling.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(k)) = block;
-        }
-    }
+    const Eigen::MatrixXd coupling = patchCoupling(body, patch, lever, otherLever);
     const Eigen::VectorXd solved = coupling.completeOrthogonalDecomposition().solve(target);
     // Reachable: the least-squares solution meets the targets to 1e-6 of their size, plus round-off
     // (1e-12) of the velocities involved. Exactly consistent for eps = 0; for eps != 0 a patch tilted
@@ -237,7 +247,8 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     {
         return false;
     }
-    constexpr int kIterations = 30; // a body and its supports on at most 8 points: converged well before
+    // iterate until the impulses stop changing (1e-9 of the largest load), at most kMaxIterations
+    constexpr int kMaxIterations = 200;
     // local copies of the velocities of the body (index 0) and of each distinct partner
     struct Motion
     {
@@ -322,13 +333,48 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         b.v -= b.invMass * j;
         b.w -= b.invInertia * row.partnerLever.cross(j);
     };
-    for (int iteration = 0; iteration < kIterations; ++iteration)
+    // warm start: the least-squares impulses of the coupled system (as in applyPatchImpulse), each
+    // projected into its cone; Gauss-Seidel alone converges slowly on so redundant a set of points
     {
+        std::vector<Vec3> levers(n);
+        std::vector<Vec3> partnerLevers(n);
+        Eigen::VectorXd target(static_cast<Eigen::Index>(3 * n));
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            levers[i] = rows[i].lever;
+            partnerLevers[i] = rows[i].partnerLever;
+            target.segment<3>(3 * static_cast<Eigen::Index>(i)) = rows[i].keep * rows[i].normal - relative(rows[i]);
+        }
+        const Eigen::MatrixXd coupling = patchCoupling(body, patch, levers, partnerLevers);
+        const Eigen::VectorXd start = coupling.completeOrthogonalDecomposition().solve(target);
+        if (start.allFinite())
+        {
+            for (std::size_t k = 0; k < n; ++k)
+            {
+                Row& row = rows[k];
+                const Vec3 j = start.segment<3>(3 * static_cast<Eigen::Index>(k));
+                row.load = std::max(0.0, j.dot(row.normal));
+                row.friction = j - j.dot(row.normal) * row.normal;
+                const Real limit = patch[k].friction * row.load;
+                if (row.friction.norm() > limit)
+                {
+                    row.friction *= limit / row.friction.norm();
+                }
+                push(row, row.load * row.normal + row.friction);
+            }
+        }
+    }
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration)
+    {
+        Real change = 0.0;
+        Real largest = 0.0;
         for (std::size_t k = 0; k < n; ++k)
         {
             Row& row = rows[k];
             const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - relative(row).dot(row.normal)));
             push(row, (load - row.load) * row.normal);
+            change = std::max(change, std::abs(load - row.load));
+            largest = std::max(largest, load);
             row.load = load;
 
             const Vec3 u = relative(row);
@@ -340,7 +386,12 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
                 friction *= limit / friction.norm();
             }
             push(row, friction - row.friction);
+            change = std::max(change, (friction - row.friction).norm());
             row.friction = friction;
+        }
+        if (!(change > 1e-9 * largest))
+        {
+            break;
         }
     }
 

@@ -82,6 +82,16 @@ TEST(ReferenceScene9, StackOfFiftyCubesStandsAtTenMillisecondSteps)
     EXPECT_LT(record.fastestAfterSettling, 1e-4);
 }
 
+TEST(ReferenceScene10, PyramidOfTwoHundredTenCubesStands)
+{
+    // bottom row of 20 with gaps of 0.01: every cube above the first row rests on two, and the
+    // whole pyramid must stay within 5 mm of where it settled at 1 s
+    io::Scene scene = loadReferenceScene("pyramid");
+    ASSERT_EQ(scene.dynamicBodies.size(), 210u);
+    const StackRecord record = runStack(scene, 1e-3, 1.0);
+    EXPECT_LT(record.largestDrift, 5e-3);
+}
+
 TEST(ShockPropagation, WithoutItTheStackOfFiftyFallsWithinTwoSeconds)
 {
     // What shock propagation buys: the same contact pass without the final frozen sweep leaves the
