@@ -160,24 +160,17 @@ void collideBoxBox(const Box& boxA, const Pose& poseA, const Box& boxB, const Po
     Real bestFace = -std::numeric_limits<Real>::infinity();
     int faceAxis = -1;
     bool faceOfA = true;
-    for (int k = 0; k < 3; ++k)
+    for (const bool ofA : {true, false})
     {
-        const Real s = separation(a, b, a.axes.col(k));
-        if (s > bestFace + 1e-9 * scale)
+        for (int k = 0; k < 3; ++k)
         {
-            bestFace = s;
-            faceAxis = k;
-            faceOfA = true;
-        }
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-        const Real s = separation(a, b, b.axes.col(k));
-        if (s > bestFace + 1e-9 * scale)
-        {
-            bestFace = s;
-            faceAxis = k;
-            faceOfA = false;
+            const Real s = separation(a, b, (ofA ? a : b).axes.col(k));
+            if (s > bestFace + 1e-9 * scale)
+            {
+                bestFace = s;
+                faceAxis = k;
+                faceOfA = ofA;
+            }
         }
     }
     if (bestFace >= threshold)

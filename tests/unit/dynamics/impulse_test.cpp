@@ -208,13 +208,7 @@ TEST(Impulse, CollisionMatrixPredictsPointVelocityChangeOfApplyImpulse)
     expectVecNear(after - before, k * j);
 }
 
-// Random contact: two bodies with random masses, rotated diagonal inertias and lever arms.
-struct RandomContact
-{
-    ContactBody a;
-    ContactBody b;
-};
-
+// A random body at a contact: random mass, rotated diagonal inertia and lever arm.
 ContactBody randomBody(std::mt19937& rng)
 {
     std::uniform_real_distribution<Real> mass(0.1, 10.0);
@@ -225,6 +219,26 @@ ContactBody randomBody(std::mt19937& rng)
     const Vec3 inertia(moment(rng), moment(rng), moment(rng));
     return {1.0 / mass(rng), r * inertia.cwiseInverse().asDiagonal() * r.transpose(),
             Vec3(lever(rng), lever(rng), lever(rng))};
+}
+
+struct RandomContact
+{
+    Mat3 k;
+    Vec3 n;
+    Vec3 uRel;
+};
+
+// Two random bodies, a random unit normal and a random relative velocity mirrored to approach.
+RandomContact randomApproachingContact(std::mt19937& rng, std::normal_distribution<Real>& gauss)
+{
+    const Mat3 k = collisionMatrix(randomBody(rng), randomBody(rng));
+    const Vec3 n = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    Vec3 uRel(gauss(rng), gauss(rng), gauss(rng));
+    if (uRel.dot(n) > 0.0)
+    {
+        uRel -= 2.0 * uRel.dot(n) * n;
+    }
+    return {k, n, uRel};
 }
 
 TEST(Impulse, CollisionMatrixIsSymmetricPositiveDefinite)
@@ -283,13 +297,7 @@ TEST(Impulse, StaticFrictionOnRandomContactsStopsSlip)
     int sticking = 0;
     for (int trial = 0; trial < 500; ++trial)
     {
-        const Mat3 k = collisionMatrix(randomBody(rng), randomBody(rng));
-        const Vec3 n = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
-        Vec3 uRel(gauss(rng), gauss(rng), gauss(rng));
-        if (uRel.dot(n) > 0.0)
-        {
-            uRel -= 2.0 * uRel.dot(n) * n;
-        }
+        const auto [k, n, uRel] = randomApproachingContact(rng, gauss);
         const Vec3 stick = k.fullPivLu().solve(-uRel);
         if (!(stick.dot(n) > 1e-9 * stick.norm()))
         {
@@ -418,13 +426,7 @@ TEST(Impulse, ElasticFrictionlessImpulseConservesRelativeKineticEnergy)
     std::normal_distribution<Real> gauss(0.0, 1.0);
     for (int trial = 0; trial < 500; ++trial)
     {
-        const Mat3 k = collisionMatrix(randomBody(rng), randomBody(rng));
-        const Vec3 n = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
-        Vec3 uRel(gauss(rng), gauss(rng), gauss(rng));
-        if (uRel.dot(n) > 0.0)
-        {
-            uRel -= 2.0 * uRel.dot(n) * n;
-        }
+        const auto [k, n, uRel] = randomApproachingContact(rng, gauss);
         const Vec3 j = computeImpulse(uRel, n, k, 1.0, 0.0);
         const Real gain = j.dot(uRel) + 0.5 * j.dot(k * j);
         const Real scale = j.norm() * uRel.norm() + j.squaredNorm() * k.norm();
