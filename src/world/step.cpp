@@ -14,8 +14,10 @@
 //   6. shock propagation     one more sweep with eps = 0, level by level, lower levels frozen
 //   7. position update       x += dt v, q = exp(dt w) q, w = I(q)^-1 L
 //
-// Each pass sweeps the pairs in a fixed order, resolving each pair's deepest approaching point
-// (dynamics/pair_resolution.cpp), and stops early after a sweep that applies no impulse.
+// Each pass sweeps in a fixed order and stops early after a sweep that applies no impulse. The
+// collision pass resolves pair by pair; the contact pass and shock propagation go level by level,
+// resolving each body against all it rests on as one contact patch (dynamics/contact_patch.cpp),
+// with the paper's deepest approaching point as the fallback (dynamics/pair_resolution.cpp).
 //
 // The traditional order (Scheme::Traditional) reuses the same stages for comparison: update
 // velocities and positions first, then resolve collisions and contacts at the new poses.
