@@ -153,6 +153,42 @@ Eigen::MatrixXd patchCoupling(const RigidBody& body, const std::vector<PatchPoin
     return coupling;
 }
 
+// Target normal velocity of every point of a patch from its normal approach u_n (negative).
+// Restitution eps >= 0 reflects each point's own approach (an elastic landing keeps its spin); a
+// negative eps of the contact ramp keeps |eps| of the patch's mean approach at every point, so each
+// sweep removes the tilt and slip outright and shares out only the rest.
+std::vector<Real> targetNormalVelocities(const std::vector<Real>& approach, Real eps)
+{
+    Real mean = 0.0;
+    for (const Real un : approach)
+    {
+        mean += un / static_cast<Real>(approach.size());
+    }
+    std::vector<Real> keep(approach.size());
+    for (std::size_t k = 0; k < approach.size(); ++k)
+    {
+        keep[k] = eps >= 0.0 ? -eps * approach[k] : -eps * mean;
+    }
+    return keep;
+}
+
+// Applies impulse j_k at every patch point: +j_k to the body, -j_k to its partner there.
+void applyToPatch(RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& impulses,
+                  const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever)
+{
+    for (std::size_t k = 0; k < patch.size(); ++k)
+    {
+        if (!body.immovable())
+        {
+            applyImpulse(body, impulses[k], lever[k]);
+        }
+        if (!patch[k].other->immovable())
+        {
+            applyImpulse(*patch[k].other, -impulses[k], partnerLever[k]);
+        }
+    }
+}
+
 } // namespace
 
 bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, const PassSettings& settings)
@@ -175,8 +211,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     std::vector<Vec3> lever(patch.size());
     std::vector<Vec3> otherLever(patch.size());
     std::vector<Vec3> velocity(patch.size());
-    Eigen::VectorXd target(3 * n);
-    Real meanApproach = 0.0;
+    std::vector<Real> approach(patch.size());
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
         const ContactPoint& contact = patch[k].contact;
@@ -184,16 +219,13 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         lever[k] = contact.point - body.predicted.position;
         otherLever[k] = contact.point - other.predicted.position;
         velocity[k] = relativeVelocity(body, body.predicted, other, other.predicted, contact, settings);
-        meanApproach += velocity[k].dot(contact.normal) / static_cast<Real>(patch.size());
+        approach[k] = velocity[k].dot(contact.normal);
     }
+    const std::vector<Real> keep = targetNormalVelocities(approach, eps);
+    Eigen::VectorXd target(3 * n);
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
-        const Vec3& normal = patch[k].contact.normal;
-        // restitution eps >= 0 reflects each point's own approach (an elastic landing keeps its
-        // spin); a negative eps of the contact ramp keeps |eps| of the patch's mean approach at
-        // every point, so each sweep removes the tilt and slip outright and shares only the rest
-        const Real keep = eps >= 0.0 ? -eps * velocity[k].dot(normal) : -eps * meanApproach;
-        target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep * normal - velocity[k];
+        target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep[k] * patch[k].contact.normal - velocity[k];
     }
     const Eigen::MatrixXd coupling = patchCoupling(body, patch, lever, otherLever);
     const Eigen::VectorXd solved = coupling.completeOrthogonalDecomposition().solve(target);
@@ -226,17 +258,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         return false;
     }
-    for (std::size_t k = 0; k < patch.size(); ++k)
-    {
-        if (!body.immovable())
-        {
-            applyImpulse(body, impulses[k], lever[k]);
-        }
-        if (!patch[k].other->immovable())
-        {
-            applyImpulse(*patch[k].other, -impulses[k], otherLever[k]);
-        }
-    }
+    applyToPatch(body, patch, impulses, lever, otherLever);
     return true;
 }
 
@@ -279,7 +301,8 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     const std::size_t n = patch.size();
     std::vector<Row> rows(n);
     std::vector<Real> approach(n);
-    Real meanApproach = 0.0;
+    std::vector<Vec3> levers(n); // the rows' levers, as patchCoupling and applyToPatch take them
+    std::vector<Vec3> partnerLevers(n);
     for (std::size_t k = 0; k < n; ++k)
     {
         const ContactPoint& contact = patch[k].contact;
@@ -296,8 +319,8 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
                 {&other, other.linearVelocity, other.angularVelocity, invMassOf(other), invInertiaOf(other)});
             row.partner = motions.size() - 1;
         }
-        row.lever = contact.point - body.predicted.position;
-        row.partnerLever = contact.point - other.predicted.position;
+        row.lever = levers[k] = contact.point - body.predicted.position;
+        row.partnerLever = partnerLevers[k] = contact.point - other.predicted.position;
         row.normal = contact.normal;
         row.tangent1 = row.normal.unitOrthogonal();
         row.tangent2 = row.normal.cross(row.tangent1);
@@ -305,7 +328,6 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
             body.pointVelocity(contact.point, body.predicted) - other.pointVelocity(contact.point, other.predicted);
         approach[k] = relativeVelocity(body, body.predicted, other, other.predicted, contact, settings).dot(row.normal);
         row.correction = approach[k] - raw.dot(row.normal);
-        meanApproach += approach[k] / static_cast<Real>(n);
         const Motion& partner = motions[row.partner];
         const Mat3 K = couplingMatrix(motions[0].invMass, motions[0].invInertia, row.lever, row.lever) +
                        couplingMatrix(partner.invMass, partner.invInertia, row.partnerLever, row.partnerLever);
@@ -313,9 +335,10 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         row.tangentMass1 = 1.0 / row.tangent1.dot(K * row.tangent1);
         row.tangentMass2 = 1.0 / row.tangent2.dot(K * row.tangent2);
     }
+    const std::vector<Real> keep = targetNormalVelocities(approach, eps);
     for (std::size_t k = 0; k < n; ++k)
     {
-        rows[k].keep = eps >= 0.0 ? -eps * approach[k] : -eps * meanApproach;
+        rows[k].keep = keep[k];
     }
 
     const auto relative = [&](const Row& row)
@@ -336,13 +359,9 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     // warm start: the least-squares impulses of the coupled system (as in applyPatchImpulse), each
     // projected into its cone; Gauss-Seidel alone converges slowly on so redundant a set of points
     {
-        std::vector<Vec3> levers(n);
-        std::vector<Vec3> partnerLevers(n);
         Eigen::VectorXd target(static_cast<Eigen::Index>(3 * n));
         for (std::size_t i = 0; i < n; ++i)
         {
-            levers[i] = rows[i].lever;
-            partnerLevers[i] = rows[i].partnerLever;
             target.segment<3>(3 * static_cast<Eigen::Index>(i)) = rows[i].keep * rows[i].normal - relative(rows[i]);
         }
         const Eigen::MatrixXd coupling = patchCoupling(body, patch, levers, partnerLevers);
@@ -395,25 +414,14 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         }
     }
 
+    std::vector<Vec3> impulses(n);
     bool applied = false;
     for (std::size_t k = 0; k < n; ++k)
     {
-        const Vec3 j = rows[k].load * rows[k].normal + rows[k].friction;
-        if (j.isZero(0.0))
-        {
-            continue;
-        }
-        applied = true;
-        if (!body.immovable())
-        {
-            applyImpulse(body, j, rows[k].lever);
-        }
-        RigidBody& other = *patch[k].other;
-        if (!other.immovable())
-        {
-            applyImpulse(other, -j, rows[k].partnerLever);
-        }
+        impulses[k] = rows[k].load * rows[k].normal + rows[k].friction;
+        applied = applied || !impulses[k].isZero(0.0);
     }
+    applyToPatch(body, patch, impulses, levers, partnerLevers);
     return applied;
 }
 

@@ -155,6 +155,14 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     }
 }
 
+// Speed at which the pair closes at a contact, from the state velocities alone: what the
+// restitution threshold is compared with.
+Real closingSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
+                  const ContactPoint& contact)
+{
+    return -(a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB)).dot(contact.normal);
+}
+
 ContactBody contactBody(const RigidBody& body, const Vec3& point, const Pose& pose)
 {
     if (body.immovable())
@@ -171,9 +179,7 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
     const ContactBody cb = contactBody(b, contact.point, poseB);
     const Mat3 K = collisionMatrix(ca, cb);
     const Vec3 uRel = relativeVelocity(a, poseA, b, poseB, contact, settings);
-    if (eps > 0.0 &&
-        -(a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB)).dot(contact.normal) <
-            settings.restitutionThreshold)
+    if (eps > 0.0 && closingSpeed(a, poseA, b, poseB, contact) < settings.restitutionThreshold)
     {
         eps = 0.0;
     }
@@ -219,10 +225,8 @@ Real patchRestitution(const RigidBody& body, Real eps, const std::vector<PatchPo
     }
     for (const PatchPoint& point : patch)
     {
-        const RigidBody& other = *point.other;
-        const Vec3 u = body.pointVelocity(point.contact.point, body.predicted) -
-                       other.pointVelocity(point.contact.point, other.predicted);
-        if (-u.dot(point.contact.normal) >= settings.restitutionThreshold)
+        if (closingSpeed(body, body.predicted, *point.other, point.other->predicted, point.contact) >=
+            settings.restitutionThreshold)
         {
             return eps;
         }
@@ -275,14 +279,12 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
     {
         scratch.clear();
         collideShapes(a.shape, a.predicted, b.shape, b.predicted, settings.threshold, scratch);
-        const ContactPoint* deepest =
-            deepestApproaching(a, a.predicted, b, b.predicted, settings.threshold, scratch, settings);
-        if (deepest == nullptr)
+        patch.clear();
+        collectApproaching(a, b, mu, settings, scratch, patch);
+        if (patch.empty())
         {
             break;
         }
-        patch.clear();
-        collectApproaching(a, b, mu, settings, scratch, patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
             applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings))
         {
@@ -293,7 +295,12 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
             ++applied;
             break;
         }
-        ContactPoint contact = *deepest;
+        // the deepest approaching point, the first of equally deep ones
+        ContactPoint contact = patch[0].contact;
+        for (const PatchPoint& point : patch)
+        {
+            contact = point.contact.phi < contact.phi ? point.contact : contact;
+        }
         Pose poseA = a.predicted;
         Pose poseB = b.predicted;
         if (settings.timeOfImpactGeometry)
