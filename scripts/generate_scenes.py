@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Writes the generated reference scenes (stacks, pyramid, stacking regressions) into scenes/.
+"""Writes the generated reference scenes (stacks, pyramid, stacking regressions, nonconvex scenes) into scenes/.
 
 Run from anywhere: python3 scripts/generate_scenes.py. The hand-written scenes 1-8 are not touched.
 """
 import json
+import math
 import pathlib
+import random
 import re
 
 SCENES = pathlib.Path(__file__).resolve().parent.parent / "scenes"
@@ -79,6 +81,72 @@ def seesaw():
           "1 m onto the other: the heavy side goes down and the light cube is thrown up.", bodies, 3.0)
 
 
+def mesh(name, file, position, orientation=None, mass=None, density=None, static=False, material="default"):
+    """A mesh body; position and orientation place the mesh file's own frame."""
+    body = {"name": name}
+    if static:
+        body["static"] = True
+    body["shape"] = {"type": "mesh", "file": f"meshes/{file}"}
+    if mass is not None:
+        body["mass"] = mass
+    if density is not None:
+        body["density"] = density
+    body["position"] = [round(p, 12) for p in position]
+    if orientation is not None:
+        body["orientation"] = orientation
+    body["material"] = material
+    return body
+
+
+def ring_on_peg():
+    bodies = [GROUND, mesh("peg", "peg.obj", [0, 0, 0], static=True),
+              mesh("ring", "ring.obj", [0.05, 0, 1.0], {"axis": [1, 0, 0], "angle_deg": 30}, mass=1.0)]
+    write("ring_on_peg", "Reference scene 13: a torus (hole radius 0.25) tilted 30 degrees falls over a static peg of "
+          "radius 0.15; it must end on the ground around the peg, not on its top as its convex hull would.",
+          bodies, 3.0)
+
+
+def tori_stack():
+    bodies = [GROUND] + [mesh(f"torus{k}", "torus.obj", [0, 0, 0.05 + 0.1 * k], mass=1.0) for k in range(3)]
+    write("tori_stack", "Three tori (centre-line radius 0.2, tube radius 0.05) stacked flat, touching; mesh against "
+          "mesh resting contact: they must stand.", bodies, 5.0)
+
+
+def random_unit_quaternion(rng):
+    # uniform over rotations (Shoemake's subgroup algorithm)
+    u1, u2, u3 = rng.random(), rng.random(), rng.random()
+    a, b = math.sqrt(1 - u1), math.sqrt(u1)
+    return [round(x, 12) for x in (a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2),
+                                    b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))]
+
+
+def nonconvex_pile(n):
+    rng = random.Random(14)
+    pieces = ["small_torus.obj", "l_block.obj", "star.obj", "dumbbell.obj", "gear.stl"]
+    per_row, spacing = 8, 0.25
+    per_layer = per_row * per_row
+    layers = (n + per_layer - 1) // per_layer
+    top = 0.3 + spacing * (layers - 1)
+    height = top + 1.0
+    bodies = [GROUND]
+    for name, half, centre in (("wall_x_minus", [0.1, 1.2, height / 2], [-1.1, 0, height / 2]),
+                               ("wall_x_plus", [0.1, 1.2, height / 2], [1.1, 0, height / 2]),
+                               ("wall_y_minus", [1.0, 0.1, height / 2], [0, -1.1, height / 2]),
+                               ("wall_y_plus", [1.0, 0.1, height / 2], [0, 1.1, height / 2])):
+        bodies.append(box(name, half, centre, static=True))
+    for k in range(n):
+        layer, slot = divmod(k, per_layer)
+        row, column = divmod(slot, per_row)
+        position = [(column - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
+                    (row - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
+                    0.3 + spacing * layer]
+        bodies.append(mesh(f"piece{k}", pieces[k % len(pieces)], position, random_unit_quaternion(rng),
+                           density=1000.0))
+    write(f"nonconvex_pile_{n}", f"Reference scene 14: {n} nonconvex meshes (tori, L-blocks, stars, dumbbells, gears) "
+          "dropped into a 2 m x 2 m box with random orientations; mu = 0.5, eps = 0.3. They must settle without "
+          "interpenetrating.", bodies, 10.0, materials={"default": {"restitution": 0.3, "friction": 0.5}})
+
+
 if __name__ == "__main__":
     box_stack(10)
     box_stack(50)
@@ -86,3 +154,7 @@ if __name__ == "__main__":
     heavy_on_light()
     lintel()
     seesaw()
+    ring_on_peg()
+    tori_stack()
+    nonconvex_pile(200)
+    nonconvex_pile(1000)

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev        # linear algebra
   nlohmann-json3-dev   # scene files
   libcli11-dev         # command line
+  libassimp-dev        # mesh files (OBJ, STL)
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks
   clang-format         # formatting check

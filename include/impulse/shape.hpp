@@ -2,7 +2,9 @@
 #pragma once
 
 #include <impulse/math.hpp>
+#include <impulse/mesh.hpp>
 
+#include <memory>
 #include <variant>
 
 namespace impulse
@@ -27,8 +29,15 @@ struct Plane
     Real offset = 0.0;
 };
 
+/// A closed triangle mesh with its signed distance grid, shared by every body that uses it. The
+/// body frame is the mesh's own: centre of mass at the origin, principal axes.
+struct Mesh
+{
+    std::shared_ptr<const MeshGeometry> geometry;
+};
+
 /// The geometry of a body. Body frame: origin at the centre of mass, axes on the principal axes.
-using Shape = std::variant<Sphere, Box, Plane>;
+using Shape = std::variant<Sphere, Box, Plane, Mesh>;
 
 /// Radius of a sphere about the body origin that contains the shape (infinite for a plane).
 Real boundingRadius(const Shape& shape);

@@ -2,6 +2,7 @@
 // Scene files: JSON read with nlohmann-json, checked field by field so that every problem is
 // reported with the file, the field's JSON pointer and what is wrong. Unknown fields are refused:
 // a misspelt field silently ignored would be a silently wrong simulation.
+#include <impulse/io/mesh_file.hpp>
 #include <impulse/io/scene.hpp>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 namespace impulse::io
 {
@@ -248,9 +250,64 @@ class Field
     const std::string& m_source;
 };
 
-Shape readShape(const Field& field)
+// Meshes read so far in this scene, so bodies that use the same file, scale and grid share one
+// prepared geometry.
+struct MeshLibrary
 {
-    field.requireObject({"type", "radius", "half_extents", "normal", "offset"});
+    std::filesystem::path directory; ///< relative mesh paths start here: the scene file's directory
+    std::map<std::tuple<std::string, Real, Real, Real, int>, std::shared_ptr<const MeshGeometry>> prepared;
+};
+
+Mesh readMesh(const Field& field, MeshLibrary& library)
+{
+    field.requireObject({"type", "file", "scale", "resolution"});
+    const Field file = field.at("file");
+    const std::filesystem::path path = library.directory / file.text();
+    Vec3 scale = Vec3::Ones();
+    if (field.has("scale"))
+    {
+        const Field value = field.at("scale");
+        scale = value.json().is_array() ? value.positiveVec3() : Vec3::Constant(value.positive());
+    }
+    MeshOptions options;
+    if (field.has("resolution"))
+    {
+        options.resolution = field.at("resolution").count(4);
+        if (options.resolution > 1024)
+        {
+            field.at("resolution").fail("must be at most 1024 cells, got " + std::to_string(options.resolution));
+        }
+    }
+    const auto key =
+        std::make_tuple(path.lexically_normal().string(), scale.x(), scale.y(), scale.z(), options.resolution);
+    if (const auto found = library.prepared.find(key); found != library.prepared.end())
+    {
+        return Mesh{found->second};
+    }
+    try
+    {
+        TriangleMesh mesh = readMeshFile(path);
+        for (Vec3& vertex : mesh.vertices)
+        {
+            vertex = vertex.cwiseProduct(scale);
+        }
+        const auto geometry = MeshGeometry::build(mesh, options);
+        library.prepared.emplace(key, geometry);
+        return Mesh{geometry};
+    }
+    catch (const MeshFileError& error)
+    {
+        file.fail(error.what());
+    }
+    catch (const MeshError& error)
+    {
+        file.fail(path.string() + ": " + error.what());
+    }
+}
+
+Shape readShape(const Field& field, MeshLibrary& meshes)
+{
+    field.requireObject({"type", "radius", "half_extents", "normal", "offset", "file", "scale", "resolution"});
     const std::string type = field.at("type").text();
     if (type == "sphere")
     {
@@ -269,7 +326,11 @@ Shape readShape(const Field& field)
         const Real offset = field.has("offset") ? field.at("offset").number() : 0.0;
         return Plane{normal.stableNormalized(), offset / normal.stableNorm()};
     }
-    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box or plane)");
+    if (type == "mesh")
+    {
+        return readMesh(field, meshes);
+    }
+    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box, plane or mesh)");
 }
 
 Material readMaterial(const Field& field)
@@ -335,8 +396,9 @@ void readSolver(const Field& field, StepOptions& options)
 
 } // namespace
 
-Scene parseScene(const std::string& text, const std::string& source)
+Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory)
 {
+    MeshLibrary meshes{directory, {}};
     Json document;
     try
     {
@@ -425,7 +487,7 @@ Scene parseScene(const std::string& text, const std::string& source)
                             "velocity", "angular_velocity"});
         BodyDef def;
         def.type = body.has("static") && body.at("static").boolean() ? BodyType::Static : BodyType::Dynamic;
-        def.shape = readShape(body.at("shape"));
+        def.shape = readShape(body.at("shape"), meshes);
         def.material = lookupMaterial(body.at("material"));
         if (body.has("position"))
         {
@@ -434,6 +496,14 @@ Scene parseScene(const std::string& text, const std::string& source)
         if (body.has("orientation"))
         {
             def.orientation = body.at("orientation").orientation();
+        }
+        if (const auto* mesh = std::get_if<Mesh>(&def.shape))
+        {
+            // the scene places the mesh's own frame; the body lives at its centre of mass on its
+            // principal axes
+            const Pose& frame = mesh->geometry->frameInMesh();
+            def.position += def.orientation * frame.position;
+            def.orientation = def.orientation * frame.orientation;
         }
         if (def.type == BodyType::Dynamic)
         {
@@ -511,7 +581,7 @@ Scene loadScene(const std::filesystem::path& path)
     }
     std::ostringstream text;
     text << in.rdbuf();
-    return parseScene(text.str(), path.string());
+    return parseScene(text.str(), path.string(), path.parent_path());
 }
 
 } // namespace impulse::io

@@ -17,6 +17,13 @@ Aabb shapeBounds(const Shape& shape, const Pose& pose)
     {
         extent = pose.rotation.cwiseAbs() * box->halfExtents;
     }
+    else if (const auto* mesh = std::get_if<Mesh>(&shape))
+    {
+        // the body-frame box of the vertices, rotated: its centre need not be the centre of mass
+        const Vec3 centre = pose.toWorld(0.5 * (mesh->geometry->lower() + mesh->geometry->upper()));
+        const Vec3 half = pose.rotation.cwiseAbs() * (0.5 * (mesh->geometry->upper() - mesh->geometry->lower()));
+        return {centre - half, centre + half};
+    }
     return {pose.position - extent, pose.position + extent};
 }
 

@@ -5,13 +5,15 @@
 // with face clipping (box_box.cpp): sampling corners against a box's distance is degenerate for
 // boxes stacked flush, whose corners all lie on the other box's edges.
 //
-//            sphere        box                      plane
-//   sphere   centre line   closest point            deepest point
-//   box      (swapped)     separating axis + clip   corners
-//   plane    (swapped)     (swapped)                never (both static)
+//            sphere        box                      plane            mesh
+//   sphere   centre line   closest point            deepest point    closest points (mesh_contacts.cpp)
+//   box      (swapped)     separating axis + clip   corners          vertices and edges both ways
+//   plane    (swapped)     (swapped)                never (static)   vertices
+//   mesh     (swapped)     (swapped)                (swapped)        vertices and edges both ways
 #include "collision/narrow_phase.hpp"
 
 #include "collision/box_box.hpp"
+#include "collision/mesh_contacts.hpp"
 #include "geometry/signed_distance.hpp"
 
 #include <array>
@@ -127,6 +129,10 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
         {
             return spherePlane(*sa, poseA, *pb, poseB, threshold, out);
         }
+        if (const auto* mb = std::get_if<Mesh>(&b))
+        {
+            return collideSphereMesh(*sa, poseA, *mb, poseB, threshold, out);
+        }
     }
     if (const auto* ba = std::get_if<Box>(&a))
     {
@@ -142,6 +148,10 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
         {
             return boxPlane(*ba, poseA, *pb, poseB, threshold, out);
         }
+        if (const auto* mb = std::get_if<Mesh>(&b))
+        {
+            return collideBoxMesh(*ba, poseA, *mb, poseB, threshold, out);
+        }
     }
     if (const auto* pa = std::get_if<Plane>(&a))
     {
@@ -152,6 +162,29 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
         if (const auto* bb = std::get_if<Box>(&b))
         {
             return swapped([&] { boxPlane(*bb, poseB, *pa, poseA, threshold, out); }, out);
+        }
+        if (const auto* mb = std::get_if<Mesh>(&b))
+        {
+            return swapped([&] { collideMeshPlane(*mb, poseB, *pa, poseA, threshold, out); }, out);
+        }
+    }
+    if (const auto* ma = std::get_if<Mesh>(&a))
+    {
+        if (const auto* sb = std::get_if<Sphere>(&b))
+        {
+            return swapped([&] { collideSphereMesh(*sb, poseB, *ma, poseA, threshold, out); }, out);
+        }
+        if (const auto* bb = std::get_if<Box>(&b))
+        {
+            return swapped([&] { collideBoxMesh(*bb, poseB, *ma, poseA, threshold, out); }, out);
+        }
+        if (const auto* pb = std::get_if<Plane>(&b))
+        {
+            return collideMeshPlane(*ma, poseA, *pb, poseB, threshold, out);
+        }
+        if (const auto* mb = std::get_if<Mesh>(&b))
+        {
+            return collideMeshMesh(*ma, poseA, *mb, poseB, threshold, out);
         }
     }
     // plane-plane: two static half-spaces never need contact

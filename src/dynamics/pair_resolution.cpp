@@ -201,6 +201,43 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
 
 constexpr std::size_t kMaxPatchPoints = 8;
 
+// Keeps at most kMaxPatchPoints points of a large patch (a mesh lying on a face touches at many
+// vertices): the deepest, then each time the point farthest from those kept. The kept points span
+// the contact region, and a rigid motion that does not approach at the corners of a region does not
+// approach inside it.
+void reducePatch(std::vector<PatchPoint>& patch)
+{
+    if (patch.size() <= kMaxPatchPoints)
+    {
+        return;
+    }
+    std::size_t deepest = 0;
+    for (std::size_t k = 1; k < patch.size(); ++k)
+    {
+        deepest = patch[k].contact.phi < patch[deepest].contact.phi ? k : deepest;
+    }
+    std::vector<PatchPoint> kept{patch[deepest]};
+    std::vector<Real> gap(patch.size());
+    for (std::size_t k = 0; k < patch.size(); ++k)
+    {
+        gap[k] = (patch[k].contact.point - patch[deepest].contact.point).squaredNorm();
+    }
+    while (kept.size() < kMaxPatchPoints)
+    {
+        const auto farthest = static_cast<std::size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
+        if (!(gap[farthest] > 0.0))
+        {
+            break; // the rest coincide with points already kept
+        }
+        kept.push_back(patch[farthest]);
+        for (std::size_t k = 0; k < patch.size(); ++k)
+        {
+            gap[k] = std::min(gap[k], (patch[k].contact.point - patch[farthest].contact.point).squaredNorm());
+        }
+    }
+    patch = std::move(kept);
+}
+
 // Appends the touching points of `body` against `other` that approach, as patch points.
 void collectApproaching(const RigidBody& body, RigidBody& other, Real friction, const PassSettings& settings,
                         const std::vector<ContactPoint>& points, std::vector<PatchPoint>& patch)
@@ -213,6 +250,15 @@ void collectApproaching(const RigidBody& body, RigidBody& other, Real friction, 
             patch.push_back({point, &other, friction});
         }
     }
+}
+
+// Do all points of the patch share one normal (a face on a face)? Meshes touching along curved or
+// faceted surfaces give patches whose normals differ; the least-squares patch cannot re-spread
+// those, and one point at a time they rock each other, so they go to the projected solve.
+bool planar(const std::vector<PatchPoint>& patch)
+{
+    return std::all_of(patch.begin(), patch.end(),
+                       [&](const PatchPoint& p) { return p.contact.normal.isApprox(patch[0].contact.normal, 1e-9); });
 }
 
 // The restitution threshold applies per patch as it does per point: all slow means no bounce.
@@ -285,8 +331,11 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         {
             break;
         }
+        reducePatch(patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
-            applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings))
+            (applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings) ||
+             (!planar(patch) &&
+              applyProjectedPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings))))
         {
             // every approaching point has its target: repeating would only compound a negative
             // restitution of the ramp, or chase round-off
@@ -331,6 +380,7 @@ int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Rea
                           scratch);
             collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
         }
+        reducePatch(patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
             (applyPatchImpulse(body, patch, eps, settings) || applyProjectedPatchImpulse(body, patch, eps, settings)))
         {

@@ -19,17 +19,18 @@ constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 Real boundingRadius(const Shape& shape)
 {
-    return std::visit(Overloaded{[](const Sphere& s) { return s.radius; },
-                                 [](const Box& b) { return b.halfExtents.norm(); },
-                                 [](const Plane&) { return kInfinity; }},
-                      shape);
+    return std::visit(
+        Overloaded{[](const Sphere& s) { return s.radius; }, [](const Box& b) { return b.halfExtents.norm(); },
+                   [](const Plane&) { return kInfinity; }, [](const Mesh& m) { return m.geometry->boundingRadius(); }},
+        shape);
 }
 
 Real volume(const Shape& shape)
 {
     return std::visit(
         Overloaded{[](const Sphere& s) { return 4.0 / 3.0 * std::numbers::pi * s.radius * s.radius * s.radius; },
-                   [](const Box& b) { return 8.0 * b.halfExtents.prod(); }, [](const Plane&) { return kInfinity; }},
+                   [](const Box& b) { return 8.0 * b.halfExtents.prod(); }, [](const Plane&) { return kInfinity; },
+                   [](const Mesh& m) { return m.geometry->volume(); }},
         shape);
 }
 
@@ -42,7 +43,8 @@ Vec3 unitInertia(const Shape& shape)
                                      const Vec3 h2 = b.halfExtents.cwiseProduct(b.halfExtents);
                                      return Vec3(h2.y() + h2.z(), h2.x() + h2.z(), h2.x() + h2.y()) / 3.0;
                                  },
-                                 [](const Plane&) -> Vec3 { return Vec3::Constant(kInfinity); }},
+                                 [](const Plane&) -> Vec3 { return Vec3::Constant(kInfinity); },
+                                 [](const Mesh& m) -> Vec3 { return m.geometry->unitInertia(); }},
                       shape);
 }
 

@@ -44,6 +44,10 @@ void validateShape(const Shape& shape)
                 "must be a finite non-zero vector");
         require(std::isfinite(plane->offset), "offset", "must be finite");
     }
+    else if (const auto* mesh = std::get_if<Mesh>(&shape))
+    {
+        require(mesh->geometry != nullptr, "mesh", "has no geometry (build it with MeshGeometry::build)");
+    }
 }
 
 } // namespace

@@ -33,7 +33,8 @@ struct Scene
 /// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.
 Scene loadScene(const std::filesystem::path& path);
 
-/// Parses scene text; `source` names it in error messages.
-Scene parseScene(const std::string& text, const std::string& source);
+/// Parses scene text; `source` names it in error messages and mesh files are found relative to
+/// `directory`.
+Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory = {});
 
 } // namespace impulse::io

@@ -1,0 +1,340 @@
+// SPDX-License-Identifier: MIT
+// Sample points of a mesh body are its vertices; a vertex inside (or within the threshold of) the
+// other body is a contact with phi and normal from that body's signed distance. Vertices alone miss
+// an edge lying across another edge or a face, so each edge that may pass through the other body
+// (phi_a + phi_b <= |edge|, phi being 1-Lipschitz) is intersected with it, and the middle of each
+// passage becomes a sample point as well.
+#include "collision/mesh_contacts.hpp"
+
+#include "geometry/signed_distance.hpp"
+#include "geometry/triangle_bvh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace impulse
+{
+namespace
+{
+
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+Real distanceToBox(const Vec3& p, const Vec3& lower, const Vec3& upper)
+{
+    return (lower - p).cwiseMax(p - upper).cwiseMax(Vec3::Zero()).norm();
+}
+
+// The other body of a pair, seen from the sample points: its signed distance in its own frame,
+// and where a segment passes through it.
+struct Target
+{
+    const Pose& pose;
+    Vec3 lower;
+    Vec3 upper;
+
+    virtual ~Target() = default;
+    virtual MeshDistance distance(const Vec3& local, Real threshold) const = 0;
+    /// A lower bound of phi, exact where phi < needed.
+    virtual Real lowerBound(const Vec3& local, Real needed) const = 0;
+    virtual void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const = 0;
+
+    Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
+};
+
+struct MeshTarget final : Target
+{
+    const MeshGeometry& mesh;
+    MeshTarget(const MeshGeometry& m, const Pose& p) : Target(p, m.lower(), m.upper()), mesh(m) {}
+    MeshDistance distance(const Vec3& local, Real threshold) const override { return mesh.distance(local, threshold); }
+    Real lowerBound(const Vec3& local, Real needed) const override { return mesh.distanceLowerBound(local, needed); }
+    void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
+    {
+        mesh.segmentCrossings(a, b, enterLeave);
+    }
+};
+
+struct BoxTarget final : Target
+{
+    Vec3 halfExtents;
+    BoxTarget(const Box& box, const Pose& p)
+        : Target(p, -box.halfExtents, box.halfExtents), halfExtents(box.halfExtents)
+    {
+    }
+    MeshDistance distance(const Vec3& local, Real) const override
+    {
+        const DistanceSample sample = boxDistance(halfExtents, local);
+        return {sample.phi, sample.gradient, true};
+    }
+    Real lowerBound(const Vec3& local, Real) const override { return boxDistance(halfExtents, local).phi; }
+    void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
+    {
+        // slab test: the segment's passage through the box, if both ends are outside
+        enterLeave.clear();
+        const Vec3 d = b - a;
+        Real enter = 0.0;
+        Real leave = 1.0;
+        for (int axis = 0; axis < 3; ++axis)
+        {
+            if (d[axis] == 0.0)
+            {
+                if (std::abs(a[axis]) >= halfExtents[axis])
+                {
+                    return;
+                }
+                continue;
+            }
+            Real t0 = (-halfExtents[axis] - a[axis]) / d[axis];
+            Real t1 = (halfExtents[axis] - a[axis]) / d[axis];
+            if (t0 > t1)
+            {
+                std::swap(t0, t1);
+            }
+            enter = std::max(enter, t0);
+            leave = std::min(leave, t1);
+        }
+        if (enter > 0.0 && leave < 1.0 && enter < leave)
+        {
+            enterLeave = {enter, leave};
+        }
+    }
+};
+
+// Which way the normal of a point found inside `target` points: away from the target when the
+// points belong to A (target is B), towards it when they belong to B.
+enum class Side
+{
+    PointsOfA,
+    PointsOfB,
+};
+
+void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance& d, Side side,
+                std::vector<ContactPoint>& out)
+{
+    const Vec3 normal = target.pose.rotation * d.gradient;
+    out.push_back({pointWorld, side == Side::PointsOfA ? normal : Vec3(-normal), d.phi});
+}
+
+// The vertices (body frame of their body at `pose`) against the target. Fills `lowerBounds` for the
+// edge test: -infinity for the vertices that are sample points, else a lower bound of phi that is
+// exact below `edgeReach` (the longest edge), so that only edges truly near the target are cast.
+void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const Target& target, Real threshold,
+                     Real edgeReach, Side side, std::vector<Real>& lowerBounds, std::vector<ContactPoint>& out)
+{
+    lowerBounds.resize(vertices.size());
+    // body frame of the vertices -> target frame in one affine map
+    const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
+    const Vec3 shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+        const Vec3 local = rotation * vertices[v] + shift;
+        const Real outside = distanceToBox(local, target.lower, target.upper);
+        if (outside > 0.0 && outside >= threshold)
+        {
+            // phi >= the distance to the target's bounding box
+            lowerBounds[v] = outside >= edgeReach ? outside : std::max(outside, target.lowerBound(local, edgeReach));
+            continue;
+        }
+        const MeshDistance d = target.distance(local, threshold);
+        if (d.phi < threshold)
+        {
+            addContact(pose.toWorld(vertices[v]), target, d, side, out);
+            lowerBounds[v] = -kInfinity;
+        }
+        else
+        {
+            // not a sample point, so phi >= threshold whatever the grid's error
+            lowerBounds[v] = std::max(d.exact ? d.phi : target.lowerBound(local, edgeReach), threshold);
+        }
+    }
+}
+
+// Edges that pass through the target: the middle of each passage is a sample point.
+template <class Edges>
+void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const Pose& pose, const Target& target,
+                  const std::vector<Real>& lowerBounds, Side side, std::vector<ContactPoint>& out)
+{
+    thread_local std::vector<Real> enterLeave;
+    const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
+    const Vec3 shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
+    for (const auto& edge : edges)
+    {
+        const Vec3& a = vertices[edge[0]];
+        const Vec3& b = vertices[edge[1]];
+        const Real reach = lowerBounds[edge[0]] + lowerBounds[edge[1]];
+        if (reach == -kInfinity)
+        {
+            continue; // an end is a sample point already
+        }
+        if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
+        {
+            continue; // phi is 1-Lipschitz: balls of radius phi about the ends cover the edge
+        }
+        const Vec3 localA = rotation * a + shift;
+        const Vec3 localB = rotation * b + shift;
+        target.crossings(localA, localB, enterLeave);
+        for (std::size_t k = 0; k + 1 < enterLeave.size(); k += 2)
+        {
+            const Real t = 0.5 * (enterLeave[k] + enterLeave[k + 1]);
+            const Vec3 local = localA + t * (localB - localA);
+            const MeshDistance d = target.distance(local, 0.0);
+            if (d.phi < 0.0)
+            {
+                addContact(target.pose.toWorld(local), target, d, side, out);
+            }
+        }
+    }
+}
+
+constexpr std::array<std::array<std::uint32_t, 2>, 12> kBoxEdges = {{
+    {0, 1},
+    {2, 3},
+    {4, 5},
+    {6, 7}, // along x
+    {0, 2},
+    {1, 3},
+    {4, 6},
+    {5, 7}, // along y
+    {0, 4},
+    {1, 5},
+    {2, 6},
+    {3, 7}, // along z
+}};
+
+std::vector<Vec3> boxCornersLocal(const Box& box)
+{
+    std::vector<Vec3> corners(8);
+    for (int i = 0; i < 8; ++i)
+    {
+        const Vec3 signs((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+        corners[static_cast<std::size_t>(i)] = signs.cwiseProduct(box.halfExtents);
+    }
+    return corners;
+}
+
+bool farApart(const Pose& poseA, Real radiusA, const Pose& poseB, Real radiusB, Real threshold)
+{
+    return (poseA.position - poseB.position).norm() - radiusA - radiusB >= threshold;
+}
+
+} // namespace
+
+void collideMeshPlane(const Mesh& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
+                      std::vector<ContactPoint>& out)
+{
+    // a plane is flat: an edge or face can only cross it if a vertex does
+    const Vec3 normal = poseB.rotation * b.normal;
+    const Real offset = b.offset + normal.dot(poseB.position);
+    if (normal.dot(poseA.position) - offset - a.geometry->boundingRadius() >= threshold)
+    {
+        return;
+    }
+    for (const Vec3& vertex : a.geometry->vertices())
+    {
+        const Vec3 p = poseA.toWorld(vertex);
+        const Real phi = normal.dot(p) - offset;
+        if (phi < threshold)
+        {
+            out.push_back({p, normal, phi});
+        }
+    }
+}
+
+void collideSphereMesh(const Sphere& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                       std::vector<ContactPoint>& out)
+{
+    const MeshGeometry& mesh = *b.geometry;
+    if (farApart(poseA, a.radius, poseB, mesh.boundingRadius(), threshold))
+    {
+        return;
+    }
+    // the sphere's distance is its centre's distance less the radius, so the centre's closest point
+    // on the mesh is the deepest contact
+    const Vec3 centre = poseB.toLocal(poseA.position);
+    const MeshDistance nearest = mesh.distance(centre);
+    if (nearest.phi - a.radius >= threshold)
+    {
+        return;
+    }
+    const auto add = [&](const Vec3& gradient, Real centreDistance)
+    {
+        const Real phi = centreDistance - a.radius;
+        const Vec3 normal = poseB.rotation * gradient;
+        out.push_back({poseA.position - normal * (a.radius + 0.5 * phi), normal, phi});
+    };
+    add(nearest.gradient, nearest.phi);
+    if (!std::isfinite(threshold))
+    {
+        return; // asked only for the least distance
+    }
+    // other faces the sphere touches at once (a ball in a groove): each face whose closest point is
+    // inside it, facing a way no point found so far faces
+    const TriangleBvh& bvh = mesh.bvh();
+    thread_local std::vector<std::uint32_t> near;
+    bvh.trianglesNear(centre, a.radius + threshold, near);
+    const std::size_t first = out.size() - 1;
+    for (const std::uint32_t t : near)
+    {
+        const auto& tri = bvh.triangle(t);
+        const TrianglePoint closest =
+            closestPointOnTriangle(centre, bvh.vertex(tri[0]), bvh.vertex(tri[1]), bvh.vertex(tri[2]));
+        const Vec3& faceNormal = bvh.faceNormal(t);
+        const Real height = (centre - closest.point).dot(faceNormal);
+        if (closest.feature != TriangleFeature::Face || height <= 0.0)
+        {
+            continue;
+        }
+        const Vec3 normal = poseB.rotation * faceNormal;
+        const bool newDirection = std::none_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                                               [&](const ContactPoint& c) { return c.normal.dot(normal) > 0.985; });
+        if (newDirection)
+        {
+            add(faceNormal, height);
+        }
+    }
+}
+
+void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                    std::vector<ContactPoint>& out)
+{
+    const MeshGeometry& mesh = *b.geometry;
+    if (farApart(poseA, a.halfExtents.norm(), poseB, mesh.boundingRadius(), threshold))
+    {
+        return;
+    }
+    thread_local std::vector<Real> cornerBounds;
+    thread_local std::vector<Real> vertexBounds;
+    const std::vector<Vec3> corners = boxCornersLocal(a);
+    const MeshTarget meshTarget(mesh, poseB);
+    const BoxTarget boxTarget(a, poseA);
+    verticesAgainst(corners, poseA, meshTarget, threshold, 2.0 * a.halfExtents.maxCoeff(), Side::PointsOfA,
+                    cornerBounds, out);
+    verticesAgainst(mesh.vertices(), poseB, boxTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+                    vertexBounds, out);
+    edgesThrough(corners, kBoxEdges, poseA, meshTarget, cornerBounds, Side::PointsOfA, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), poseB, boxTarget, vertexBounds, Side::PointsOfB, out);
+}
+
+void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                     std::vector<ContactPoint>& out)
+{
+    const MeshGeometry& meshA = *a.geometry;
+    const MeshGeometry& meshB = *b.geometry;
+    if (farApart(poseA, meshA.boundingRadius(), poseB, meshB.boundingRadius(), threshold))
+    {
+        return;
+    }
+    thread_local std::vector<Real> boundsA;
+    thread_local std::vector<Real> boundsB;
+    const MeshTarget targetA(meshA, poseA);
+    const MeshTarget targetB(meshB, poseB);
+    verticesAgainst(meshA.vertices(), poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA, boundsA,
+                    out);
+    verticesAgainst(meshB.vertices(), poseB, targetA, threshold, meshB.longestFeatureEdge(), Side::PointsOfB, boundsB,
+                    out);
+    edgesThrough(meshA.vertices(), meshA.featureEdges(), poseA, targetB, boundsA, Side::PointsOfA, out);
+    edgesThrough(meshB.vertices(), meshB.featureEdges(), poseB, targetA, boundsB, Side::PointsOfB, out);
+}
+
+} // namespace impulse

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: MIT
+// Narrow phase of the shape pairs with a triangle mesh (GBF03 sec. 3): the vertices of each body
+// against the other's signed distance, and edges that pass through the other body.
+#pragma once
+
+#include "collision/contact.hpp"
+
+#include <impulse/shape.hpp>
+
+#include <vector>
+
+namespace impulse
+{
+
+void collideMeshPlane(const Mesh& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
+                      std::vector<ContactPoint>& out);
+void collideSphereMesh(const Sphere& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                       std::vector<ContactPoint>& out);
+void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                    std::vector<ContactPoint>& out);
+void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                     std::vector<ContactPoint>& out);
+
+} // namespace impulse

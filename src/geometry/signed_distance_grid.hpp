@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// phi of a closed mesh sampled on a uniform grid in body space (GBF03 sec. 3), with trilinear
+// interpolation and its gradient.
+#pragma once
+
+#include "geometry/triangle_bvh.hpp"
+
+#include <array>
+#include <vector>
+
+namespace impulse
+{
+
+class SignedDistanceGrid
+{
+  public:
+    /// Samples phi over the box [lower, upper] grown by a few cells, with `resolution` cells along
+    /// its longest side. Exact (tree search) within two cells of the surface; beyond, the distance
+    /// to the nearest triangle of a neighbour, carried by fast sweeping; signs beyond the band by
+    /// flood fill from it, so a far sample can never take the wrong side.
+    SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower, const Vec3& upper, int resolution);
+
+    MeshDistance sample(const Vec3& p) const;
+
+    Real cellSize() const { return m_cell; }
+    const std::array<int, 3>& samples() const { return m_samples; }
+    /// Cells of padding around the mesh's bounding box.
+    static constexpr int kPadding = 3;
+
+  private:
+    std::size_t index(int i, int j, int k) const
+    {
+        return static_cast<std::size_t>(i) +
+               static_cast<std::size_t>(m_samples[0]) *
+                   (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_samples[1]) * static_cast<std::size_t>(k));
+    }
+    Vec3 position(int i, int j, int k) const { return m_origin + m_cell * Vec3(i, j, k); }
+    /// Trilinear value and gradient at a point inside the grid box.
+    MeshDistance interpolate(const Vec3& p) const;
+
+    Vec3 m_origin = Vec3::Zero();
+    Real m_cell = 1.0;
+    std::array<int, 3> m_samples{};
+    std::vector<Real> m_phi;
+};
+
+} // namespace impulse

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// A bounding-volume hierarchy over the triangles of a closed mesh: closest-point queries with the
+// sign from angle-weighted pseudonormals (Baerentzen & Aanaes 2005), and segment crossings.
+#pragma once
+
+#include <impulse/mesh.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace impulse
+{
+
+/// The part of a triangle a closest point lies on: its interior, one of its edges (edge k joins
+/// corners k and k+1 mod 3) or one of its corners.
+enum class TriangleFeature : std::uint8_t
+{
+    Face,
+    Edge0,
+    Edge1,
+    Edge2,
+    Vertex0,
+    Vertex1,
+    Vertex2,
+};
+
+/// Closest point of a triangle to a query point.
+struct TrianglePoint
+{
+    Vec3 point = Vec3::Zero();
+    TriangleFeature feature = TriangleFeature::Face;
+};
+
+/// Closest point of triangle (a, b, c) to p, with the feature it lies on.
+TrianglePoint closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Result of a closest-point search.
+struct SurfacePoint
+{
+    bool found = false;        ///< false when no triangle lies within the search radius
+    Real distance = 0.0;       ///< unsigned
+    Vec3 point = Vec3::Zero(); ///< closest point on the surface
+    Vec3 pseudonormal = Vec3::UnitZ();
+    std::uint32_t triangle = 0;
+};
+
+/// A crossing of the surface by a segment: parameter t along it and whether it enters the solid.
+struct SegmentCrossing
+{
+    Real t = 0.0;
+    bool entering = false;
+};
+
+class TriangleBvh
+{
+  public:
+    /// `mesh` must be closed and consistently oriented (see MeshGeometry::build).
+    explicit TriangleBvh(const TriangleMesh& mesh);
+
+    /// Closest point of the surface to p among triangles closer than maxDistance.
+    SurfacePoint closestPoint(const Vec3& p, Real maxDistance) const;
+    /// Signed distance from a closest point: negative when p is inside the solid.
+    static Real signedDistance(const Vec3& p, const SurfacePoint& closest);
+
+    /// Unsigned distance from p to one triangle.
+    Real distanceToTriangle(const Vec3& p, std::uint32_t triangle) const;
+
+    /// Every triangle with a point closer to p than `radius`, in tree order.
+    void trianglesNear(const Vec3& p, Real radius, std::vector<std::uint32_t>& out) const;
+    const Vec3& faceNormal(std::uint32_t triangle) const { return m_faceNormals[triangle]; }
+    const std::array<std::uint32_t, 3>& triangle(std::uint32_t t) const { return m_triangles[t]; }
+    const Vec3& vertex(std::uint32_t v) const { return m_vertices[v]; }
+
+    /// Every crossing of the segment a->b with the surface, sorted by t.
+    void segmentCrossings(const Vec3& a, const Vec3& b, std::vector<SegmentCrossing>& out) const;
+
+    std::size_t triangleCount() const { return m_triangles.size(); }
+
+  private:
+    struct Node
+    {
+        Vec3 lower;
+        Vec3 upper;
+        std::uint32_t left = 0; ///< inner node: children
+        std::uint32_t right = 0;
+        std::uint32_t first = 0; ///< leaf: first index into m_order
+        std::uint32_t count = 0; ///< leaf: number of triangles; 0 for an inner node
+    };
+
+    std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids);
+    Vec3 pseudonormal(std::uint32_t triangle, TriangleFeature feature) const;
+
+    std::vector<Vec3> m_vertices;
+    std::vector<std::array<std::uint32_t, 3>> m_triangles;
+    std::vector<Vec3> m_faceNormals;                ///< unit, outward
+    std::vector<std::array<Vec3, 3>> m_edgeNormals; ///< per triangle edge, sum of the two face normals
+    std::vector<Vec3> m_vertexNormals;              ///< angle-weighted sums of incident face normals
+    std::vector<std::uint32_t> m_order;             ///< triangle indices, leaves contiguous
+    std::vector<Node> m_nodes;                      ///< m_nodes[0] is the root
+};
+
+} // namespace impulse
