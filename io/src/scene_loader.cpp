@@ -250,7 +250,7 @@ class Field
 
 Shape readShape(const Field& field)
 {
-    field.requireObject({"type", "radius", "half_extents", "normal", "offset"});
+    field.requireObject({"type", "radius", "half_extents", "normal", "offset", "half_length"});
     const std::string type = field.at("type").text();
     if (type == "sphere")
     {
@@ -269,7 +269,12 @@ Shape readShape(const Field& field)
         const Real offset = field.has("offset") ? field.at("offset").number() : 0.0;
         return Plane{normal.stableNormalized(), offset / normal.stableNorm()};
     }
-    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box or plane)");
+    if (type == "capsule")
+    {
+        field.requireObject({"type", "radius", "half_length"});
+        return Capsule{field.at("radius").positive(), field.at("half_length").positive()};
+    }
+    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box, plane or capsule)");
 }
 
 Material readMaterial(const Field& field)

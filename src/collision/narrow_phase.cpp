@@ -9,9 +9,11 @@
 //   sphere   centre line   closest point            deepest point
 //   box      (swapped)     separating axis + clip   corners
 //   plane    (swapped)     (swapped)                never (both static)
+// Capsules have their own rows, in capsule_contacts.cpp.
 #include "collision/narrow_phase.hpp"
 
 #include "collision/box_box.hpp"
+#include "collision/capsule_contacts.hpp"
 #include "geometry/signed_distance.hpp"
 
 #include <array>
@@ -113,6 +115,10 @@ template <class Collide> void swapped(Collide collide, std::vector<ContactPoint>
 void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
                    std::vector<ContactPoint>& out)
 {
+    if (collideCapsulePair(a, poseA, b, poseB, threshold, out))
+    {
+        return;
+    }
     if (const auto* sa = std::get_if<Sphere>(&a))
     {
         if (const auto* sb = std::get_if<Sphere>(&b))
