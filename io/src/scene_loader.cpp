@@ -365,7 +365,7 @@ Scene parseScene(const std::string& text, const std::string& source)
     {
         worldDef.gravity = root.at("gravity").vec3();
     }
-    Scene scene{root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}};
+    Scene scene{root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}};
     if (root.has("description"))
     {
         root.at("description").text();
@@ -503,6 +503,7 @@ Scene parseScene(const std::string& text, const std::string& source)
             body.fail(what);
         }
         scene.bodyNames.push_back(body.has("name") ? body.at("name").text() : std::string());
+        scene.bodyDefs.push_back(def);
     }
     return scene;
 }
