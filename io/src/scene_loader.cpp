@@ -365,7 +365,8 @@ Scene parseScene(const std::string& text, const std::string& source)
     {
         worldDef.gravity = root.at("gravity").vec3();
     }
-    Scene scene{root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}};
+    Scene scene{
+        root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}};
     if (root.has("description"))
     {
         root.at("description").text();

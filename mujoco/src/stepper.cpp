@@ -16,10 +16,15 @@ namespace
 
 std::string trimmed(const char* text)
 {
+    // MuJoCo's messages run over several lines; keep them on one
     std::string s(text);
     while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
     {
         s.pop_back();
+    }
+    for (std::size_t at = s.find('\n'); at != std::string::npos; at = s.find('\n', at))
+    {
+        s.replace(at, 1, "; ");
     }
     return s;
 }
@@ -117,9 +122,13 @@ void Stepper::step(const mjModel* m, mjData* d)
         writeLink(link, m_translation.world.state(link.body), m, d);
     }
     d->time += m->opt.timestep;
+    // positions, sensors and rendering of the new state. MuJoCo's kinematics renormalise each
+    // free-joint quaternion in qpos in place (by an ulp or two: impulse's are unit to within
+    // 2e-16, MuJoCo's test is exact), so what counts as written is qpos after it; the world keeps
+    // its own orientation, and the run stays bit for bit that of `impulse run`.
+    mj_forward(m, d);
     std::memcpy(m_writtenQpos.data(), d->qpos, sizeof(mjtNum) * m_writtenQpos.size());
     std::memcpy(m_writtenQvel.data(), d->qvel, sizeof(mjtNum) * m_writtenQvel.size());
-    mj_forward(m, d); // positions, sensors and rendering of the new state; qpos and qvel untouched
 }
 
 namespace

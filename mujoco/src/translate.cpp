@@ -423,7 +423,7 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
             return std::nullopt;
         default:
             problems.add(std::string(geomTypeName(m->geom_type[g])) + " geom " + nameOf(m, mjOBJ_GEOM, g) +
-                         ": impulse has sphere, box, capsule, plane (and mesh) shapes");
+                         ": impulse has no such shape (it has sphere, box, capsule and plane)");
             return std::nullopt;
         }
     };

@@ -114,10 +114,11 @@ LinkState readLink(const Translation::Link& link, const mjModel* m, const mjData
 void writeLink(const Translation::Link& link, const BodyState& state, const mjModel* m, mjData* d);
 
 /// Keeps an impulse world in step with one mjModel/mjData pair. Each call first reads qpos and qvel
-/// into the world if they differ from what the last call wrote (so edits made on the MuJoCo side
-/// are honoured, and untouched states carry on bit for bit), takes one impulse step of
+/// into the world if they differ from what the last call left there (so edits made on the MuJoCo
+/// side are honoured, and untouched states carry on bit for bit), takes one impulse step of
 /// m->opt.timestep, writes qpos, qvel and time back, and runs mj_forward so that positions, sensors
-/// and rendering see the new state.
+/// and rendering see the new state. mj_forward renormalises the free-joint quaternions in qpos (an
+/// ulp or two); the world keeps its own, so the run is bit for bit that of the impulse world.
 class Stepper
 {
   public:
