@@ -49,10 +49,19 @@ int main(int argc, char** argv)
     CLI::App* exportCommand = app.add_subcommand("export-mjcf", "Write a scene file as an equivalent MJCF model");
     exportCommand->add_option("scene", exportScene, "Scene file (JSON)")->required();
     exportCommand->add_option("--out", exportOut, "Write the MJCF here (default: standard output)");
+    double timeconst = 0.0;
+    exportCommand
+        ->add_option("--timeconst", timeconst,
+                     "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
+        ->check(CLI::PositiveNumber);
     std::string compareScene;
     CLI::App* compareCommand =
         app.add_subcommand("compare", "Run a scene in impulse and in MuJoCo and print the figures side by side");
     compareCommand->add_option("scene", compareScene, "Scene file (JSON)")->required();
+    compareCommand
+        ->add_option("--timeconst", timeconst,
+                     "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
+        ->check(CLI::PositiveNumber);
 #endif
 
     try
@@ -68,11 +77,11 @@ int main(int argc, char** argv)
 #ifdef IMPULSE_HAVE_MUJOCO
     if (exportCommand->parsed())
     {
-        return impulse::app::exportMjcf(exportScene, exportOut);
+        return impulse::app::exportMjcf(exportScene, exportOut, timeconst);
     }
     if (compareCommand->parsed())
     {
-        return impulse::app::compare(compareScene);
+        return impulse::app::compare(compareScene, timeconst);
     }
 #endif
     return impulse::app::runScene(run);

@@ -13,12 +13,12 @@
 namespace impulse::app
 {
 
-int exportMjcf(const std::string& scenePath, const std::string& outPath)
+int exportMjcf(const std::string& scenePath, const std::string& outPath, double timeconst)
 {
     std::string xml;
     try
     {
-        xml = mujoco::exportMjcf(io::loadScene(scenePath));
+        xml = mujoco::exportMjcf(io::loadScene(scenePath), timeconst);
     }
     catch (const io::SceneError& error)
     {
@@ -46,12 +46,12 @@ int exportMjcf(const std::string& scenePath, const std::string& outPath)
     return 0;
 }
 
-int compare(const std::string& scenePath)
+int compare(const std::string& scenePath, double timeconst)
 {
     mujoco::Comparison c;
     try
     {
-        c = mujoco::compareScene(scenePath);
+        c = mujoco::compareScene(scenePath, timeconst);
     }
     catch (const io::SceneError& error)
     {
@@ -69,8 +69,9 @@ int compare(const std::string& scenePath)
         return 2;
     }
     std::printf("scene    %s\n", c.scene.c_str());
-    std::printf("steps    %lld of %g s; MuJoCo %s runs the exported MJCF with native mj_step\n", c.steps, c.dt,
+    std::printf("steps    %lld of %g s; MuJoCo %s runs the exported MJCF with native mj_step,\n", c.steps, c.dt,
                 mj_versionString());
+    std::printf("         contact time constant %g s (docs/mujoco.md)\n", c.timeconst);
     std::printf("\n%-30s  %-30s  %-30s  %s\n", "figure", "impulse", "MuJoCo", "oracle (scenarios.md)");
     for (const mujoco::FigureRow& row : c.rows)
     {

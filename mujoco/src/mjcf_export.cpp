@@ -55,9 +55,9 @@ std::string uniqueName(const std::string& wanted, std::size_t index, std::set<st
 }
 
 // Contact attributes of a geom or pair for restitution eps and friction mu.
-std::string contactAttributes(Real eps, Real mu, Real dt, bool pair)
+std::string contactAttributes(Real eps, Real mu, Real timeconst, bool pair)
 {
-    const Softness soft = contactSoftness(eps, dt);
+    const Softness soft = contactSoftness(eps, timeconst);
     std::string friction = pair ? num(mu) + " " + num(mu) + " 0 0 0" : num(mu) + " 0 0";
     return "condim=\"3\" friction=\"" + friction + "\" solref=\"" + num(-soft.stiffness) + " " + num(-soft.damping) +
            "\" solimp=\"" + kSolimp + "\"";
@@ -65,10 +65,15 @@ std::string contactAttributes(Real eps, Real mu, Real dt, bool pair)
 
 } // namespace
 
-std::string exportMjcf(const io::Scene& scene)
+std::string exportMjcf(const io::Scene& scene, Real timeconst)
 {
     const World& world = scene.world;
     const Real dt = scene.options.dt;
+    if (!(timeconst >= 0.0) || !std::isfinite(timeconst))
+    {
+        throw std::invalid_argument("timeconst: must be a non-negative number of seconds");
+    }
+    const Real tc = timeconst > 0.0 ? timeconst : defaultTimeconst(dt);
     std::set<std::string> used;
     std::vector<std::string> names;
     for (std::uint32_t i = 0; i < world.bodyCount(); ++i)
@@ -87,7 +92,7 @@ std::string exportMjcf(const io::Scene& scene)
         const BodyId id{i};
         const std::string& name = names[i];
         const Material& material = world.material(world.material(id));
-        const std::string contact = contactAttributes(material.restitution, material.friction, dt, false);
+        const std::string contact = contactAttributes(material.restitution, material.friction, tc, false);
         custom << "    <numeric name=\"" << custom::kGeomRestitutionPrefix << name << "\" data=\""
                << num(material.restitution) << "\"/>\n";
         const BodyState s = world.state(id);
@@ -168,7 +173,7 @@ std::string exportMjcf(const io::Scene& scene)
                 continue;
             }
             pairs << "    <pair geom1=\"" << names[i] << "\" geom2=\"" << names[j] << "\" "
-                  << contactAttributes(c.restitution, c.friction, dt, true) << "/>\n";
+                  << contactAttributes(c.restitution, c.friction, tc, true) << "/>\n";
             custom << "    <numeric name=\"" << custom::kGeomRestitutionPrefix << names[i] << ":" << names[j]
                    << "\" data=\"" << num(c.restitution) << "\"/>\n";
         }

@@ -187,9 +187,9 @@ Real dampingRatioFor(Real restitution)
     return -log / std::sqrt(std::numbers::pi * std::numbers::pi + log * log);
 }
 
-Softness contactSoftness(Real restitution, Real dt)
+Softness contactSoftness(Real restitution, Real timeconst)
 {
-    const Real omega = 1.0 / (2.0 * dt);
+    const Real omega = 1.0 / timeconst;
     return {omega * omega, 2.0 * dampingRatioFor(restitution) * omega};
 }
 

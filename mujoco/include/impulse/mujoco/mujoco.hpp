@@ -142,16 +142,22 @@ class Stepper
 void step(const mjModel* m, mjData* d);
 void forget(const mjModel* m, const mjData* d);
 
-/// The contact softness the MuJoCo side of a comparison uses for restitution eps at time step dt:
-/// solref = (-k, -b) (MuJoCo's direct stiffness and damping), k = w^2, b = 2 zeta w, with
-/// w = 1 / (2 dt) and zeta = -ln(eps) / sqrt(pi^2 + ln(eps)^2), the damping ratio whose damped
-/// oscillator bounces back with eps (zeta = 1 for eps = 0, 0 for eps = 1). docs/mujoco.md.
+/// The contact softness the MuJoCo side of a comparison uses for restitution eps: solref = (-k, -b)
+/// (MuJoCo's direct stiffness and damping), k = w^2, b = 2 zeta w, with w = 1 / timeconst and
+/// zeta = -ln(eps) / sqrt(pi^2 + ln(eps)^2), the damping ratio whose damped oscillator bounces
+/// back with eps (zeta = 1 for eps = 0, where this is MuJoCo's solref (timeconst, 1); zeta = 0 for
+/// eps = 1). docs/mujoco.md.
 struct Softness
 {
     Real stiffness = 0.0; ///< k, 1/s^2
     Real damping = 0.0;   ///< b, 1/s
 };
-Softness contactSoftness(Real restitution, Real dt);
+Softness contactSoftness(Real restitution, Real timeconst);
+/// The default time constant: 2 dt, the stiffest contact MuJoCo's documentation recommends.
+inline Real defaultTimeconst(Real dt)
+{
+    return 2.0 * dt;
+}
 Real dampingRatioFor(Real restitution);
 /// solimp used with it: impedance 0.99 at any depth, so the contact is the spring-damper solref
 /// describes with 1 % of the unconstrained acceleration let through.
