@@ -135,7 +135,8 @@ class Stepper
     Vec3 m_gravity;
 };
 
-/// Drop-in for mj_step: one impulse step of the model's free bodies. The first call for a given
+/// Drop-in for mj_step: one impulse step of the model's free bodies under gravity and contact
+/// (qfrc_applied and xfrc_applied are not forces impulse applies). The first call for a given
 /// (m, d) translates the model (throwing ModelError if it uses what impulse does not simulate) and
 /// keeps a Stepper for the pair until `forget(m, d)`; call it before mj_deleteData/mj_deleteModel,
 /// since a new pair allocated at the same addresses would otherwise inherit the old world.
