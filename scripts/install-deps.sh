@@ -12,6 +12,7 @@ packages=(
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks
   clang-format         # formatting check
+  libmujoco-dev        # optional: MJCF models, impulse compare (impulse_mujoco, MuJoCo 2.2.2)
 )
 
 missing=()

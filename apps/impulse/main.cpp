@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The impulse command-line tool.
 #include "run_command.hpp"
+#ifdef IMPULSE_HAVE_MUJOCO
+#include "mujoco_commands.hpp"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -12,7 +15,10 @@ int main(int argc, char** argv)
 
     impulse::app::RunOptions run;
     CLI::App* runCommand = app.add_subcommand("run", "Simulate a scene file and optionally write its trajectory");
-    runCommand->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)")->required();
+    runCommand
+        ->add_option("scene", run.scenePath,
+                     "Scene file (JSON, see docs/scene-format.md), or an MJCF model (.xml, .mjcf; docs/mujoco.md)")
+        ->required();
     runCommand->add_option("--dt", run.dt, "Time step in seconds (overrides the scene's dt)")
         ->check(CLI::PositiveNumber);
     runCommand->add_option("--duration", run.duration, "Simulated time in seconds (overrides the scene's duration)")
@@ -37,6 +43,27 @@ int main(int argc, char** argv)
                      "default none")
         ->check(CLI::NonNegativeNumber);
 
+#ifdef IMPULSE_HAVE_MUJOCO
+    std::string exportScene;
+    std::string exportOut;
+    CLI::App* exportCommand = app.add_subcommand("export-mjcf", "Write a scene file as an equivalent MJCF model");
+    exportCommand->add_option("scene", exportScene, "Scene file (JSON)")->required();
+    exportCommand->add_option("--out", exportOut, "Write the MJCF here (default: standard output)");
+    double timeconst = 0.0;
+    exportCommand
+        ->add_option("--timeconst", timeconst,
+                     "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
+        ->check(CLI::PositiveNumber);
+    std::string compareScene;
+    CLI::App* compareCommand =
+        app.add_subcommand("compare", "Run a scene in impulse and in MuJoCo and print the figures side by side");
+    compareCommand->add_option("scene", compareScene, "Scene file (JSON)")->required();
+    compareCommand
+        ->add_option("--timeconst", timeconst,
+                     "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
+        ->check(CLI::PositiveNumber);
+#endif
+
     try
     {
         app.parse(argc, argv);
@@ -47,5 +74,15 @@ int main(int argc, char** argv)
         const int code = app.exit(error);
         return code == 0 ? 0 : 2;
     }
+#ifdef IMPULSE_HAVE_MUJOCO
+    if (exportCommand->parsed())
+    {
+        return impulse::app::exportMjcf(exportScene, exportOut, timeconst);
+    }
+    if (compareCommand->parsed())
+    {
+        return impulse::app::compare(compareScene, timeconst);
+    }
+#endif
     return impulse::app::runScene(run);
 }

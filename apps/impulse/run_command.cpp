@@ -4,9 +4,14 @@
 #include <impulse/io/scene.hpp>
 #include <impulse/io/trajectory.hpp>
 
+#ifdef IMPULSE_HAVE_MUJOCO
+#include <impulse/mujoco/mujoco.hpp>
+#endif
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -34,13 +39,42 @@ bool stateIsFinite(const World& world, const std::vector<BodyId>& bodies)
 int runScene(const RunOptions& options)
 {
     io::Scene scene;
+    const std::string extension = std::filesystem::path(options.scenePath).extension().string();
+    const bool mjcf = extension == ".xml" || extension == ".mjcf";
     try
     {
-        scene = io::loadScene(options.scenePath);
+        if (mjcf)
+        {
+#ifdef IMPULSE_HAVE_MUJOCO
+            scene = mujoco::loadMjcfScene(options.scenePath);
+#else
+            std::cerr << "impulse: " << options.scenePath
+                      << ": MJCF models need MuJoCo; this impulse was built without it (IMPULSE_WITH_MUJOCO)\n";
+            return 2;
+#endif
+        }
+        else
+        {
+            scene = io::loadScene(options.scenePath);
+        }
     }
     catch (const io::SceneError& error)
     {
         std::cerr << "impulse: " << error.what() << "\n";
+        return 2;
+    }
+#ifdef IMPULSE_HAVE_MUJOCO
+    catch (const mujoco::ModelError& error)
+    {
+        std::cerr << "impulse: " << error.what() << "\n";
+        return 2;
+    }
+#endif
+    if (mjcf && std::isnan(scene.duration) && !options.duration)
+    {
+        std::cerr << "impulse: " << options.scenePath
+                  << ": no duration: pass --duration, or add <numeric name=\"impulse_duration\" data=\"SECONDS\"/> "
+                     "to the model's <custom>\n";
         return 2;
     }
     if (options.dt)

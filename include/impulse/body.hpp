@@ -23,8 +23,11 @@ struct BodyDef
     BodyType type = BodyType::Dynamic;
     Shape shape = Sphere{};
     MaterialId material{};
-    Real mass = 0.0;                     ///< kg
-    Real density = 0.0;                  ///< kg/m^3, used when mass is 0
+    Real mass = 0.0;    ///< kg
+    Real density = 0.0; ///< kg/m^3, used when mass is 0
+    /// Principal moments of inertia, kg m^2, body frame; zero (the default): those of the shape as a
+    /// solid of uniform density with the body's mass. Set by model loaders that carry their own.
+    Vec3 principalInertia = Vec3::Zero();
     Vec3 position = Vec3::Zero();        ///< centre of mass, world frame
     Quat orientation = Quat::Identity(); ///< normalised on creation
     Vec3 linearVelocity = Vec3::Zero();  ///< world frame

@@ -29,6 +29,14 @@ struct Plane
     Real offset = 0.0;
 };
 
+/// Solid capsule: the points within `radius` of the segment from -halfLength to +halfLength along
+/// the body z axis (a cylinder of length 2 halfLength capped by two hemispheres), as MuJoCo's capsule.
+struct Capsule
+{
+    Real radius = 0.5;
+    Real halfLength = 0.5; ///< half the length of the cylindrical part, > 0
+};
+
 /// A closed triangle mesh with its signed distance grid, shared by every body that uses it. The
 /// body frame is the mesh's own: centre of mass at the origin, principal axes.
 struct Mesh
@@ -37,7 +45,7 @@ struct Mesh
 };
 
 /// The geometry of a body. Body frame: origin at the centre of mass, axes on the principal axes.
-using Shape = std::variant<Sphere, Box, Plane, Mesh>;
+using Shape = std::variant<Sphere, Box, Plane, Capsule, Mesh>;
 
 /// Radius of a sphere about the body origin that contains the shape (infinite for a plane).
 Real boundingRadius(const Shape& shape);

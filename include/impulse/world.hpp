@@ -87,6 +87,12 @@ class World
     /// not physical (non-positive size or mass, non-finite numbers, a dynamic plane, ...).
     BodyId createBody(const BodyDef& def);
 
+    /// Places a dynamic body: centre of mass, orientation (normalised), linear and angular velocity,
+    /// world frame. For loaders and adapters that keep the state elsewhere between steps. Throws
+    /// std::invalid_argument for a static body or non-finite values.
+    void setState(BodyId body, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
+                  const Vec3& angularVelocity);
+
     /// Advances the world by options.dt with the separated collision / contact time step.
     void step(const StepOptions& options);
 
@@ -96,6 +102,8 @@ class World
     Real mass(BodyId body) const;             ///< infinite for static bodies
     Vec3 principalInertia(BodyId body) const; ///< body frame, kg m^2
     const Shape& shape(BodyId body) const;
+    MaterialId material(BodyId body) const;
+    const Material& material(MaterialId material) const;
     Vec3 gravity() const;
     Real time() const; ///< seconds simulated so far
 

@@ -307,7 +307,8 @@ Mesh readMesh(const Field& field, MeshLibrary& library)
 
 Shape readShape(const Field& field, MeshLibrary& meshes)
 {
-    field.requireObject({"type", "radius", "half_extents", "normal", "offset", "file", "scale", "resolution"});
+    field.requireObject(
+        {"type", "radius", "half_extents", "normal", "offset", "half_length", "file", "scale", "resolution"});
     const std::string type = field.at("type").text();
     if (type == "sphere")
     {
@@ -326,11 +327,16 @@ Shape readShape(const Field& field, MeshLibrary& meshes)
         const Real offset = field.has("offset") ? field.at("offset").number() : 0.0;
         return Plane{normal.stableNormalized(), offset / normal.stableNorm()};
     }
+    if (type == "capsule")
+    {
+        field.requireObject({"type", "radius", "half_length"});
+        return Capsule{field.at("radius").positive(), field.at("half_length").positive()};
+    }
     if (type == "mesh")
     {
         return readMesh(field, meshes);
     }
-    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box, plane or mesh)");
+    field.at("type").fail("unknown shape \"" + type + "\" (expected sphere, box, plane, capsule or mesh)");
 }
 
 Material readMaterial(const Field& field)
@@ -422,7 +428,8 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
     {
         worldDef.gravity = root.at("gravity").vec3();
     }
-    Scene scene{root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}};
+    Scene scene{
+        root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}};
     if (root.has("description"))
     {
         root.at("description").text();
@@ -568,6 +575,7 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
             body.fail(what);
         }
         scene.bodyNames.push_back(body.has("name") ? body.at("name").text() : std::string());
+        scene.bodyDefs.push_back(def);
     }
     return scene;
 }

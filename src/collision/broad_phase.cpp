@@ -17,6 +17,10 @@ Aabb shapeBounds(const Shape& shape, const Pose& pose)
     {
         extent = pose.rotation.cwiseAbs() * box->halfExtents;
     }
+    else if (const auto* capsule = std::get_if<Capsule>(&shape))
+    {
+        extent = pose.rotation.col(2).cwiseAbs() * capsule->halfLength + Vec3::Constant(capsule->radius);
+    }
     else if (const auto* mesh = std::get_if<Mesh>(&shape))
     {
         // the body-frame box of the vertices, rotated: its centre need not be the centre of mass

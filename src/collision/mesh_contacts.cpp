@@ -101,6 +101,70 @@ struct BoxTarget final : Target
     }
 };
 
+struct CapsuleTarget final : Target
+{
+    Capsule capsule;
+    CapsuleTarget(const Capsule& c, const Pose& p)
+        : Target(p, -Vec3(c.radius, c.radius, c.halfLength + c.radius),
+                 Vec3(c.radius, c.radius, c.halfLength + c.radius)),
+          capsule(c)
+    {
+    }
+    MeshDistance distance(const Vec3& local, Real) const override
+    {
+        const DistanceSample sample = capsuleDistance(capsule, local);
+        return {sample.phi, sample.gradient, true};
+    }
+    Real lowerBound(const Vec3& local, Real) const override { return capsuleDistance(capsule, local).phi; }
+    void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
+    {
+        // phi along a line is convex: find its least value, then the two roots around it
+        enterLeave.clear();
+        const auto phi = [&](Real t) { return capsuleDistance(capsule, a + t * (b - a)).phi; };
+        if (phi(0.0) <= 0.0 || phi(1.0) <= 0.0)
+        {
+            return; // an end inside is a sample point already
+        }
+        Real lo = 0.0;
+        Real hi = 1.0;
+        for (int i = 0; i < 60; ++i)
+        {
+            const Real m1 = lo + (hi - lo) / 3.0;
+            const Real m2 = hi - (hi - lo) / 3.0;
+            if (phi(m1) < phi(m2))
+            {
+                hi = m2;
+            }
+            else
+            {
+                lo = m1;
+            }
+        }
+        const Real deepest = 0.5 * (lo + hi);
+        if (!(phi(deepest) < 0.0))
+        {
+            return;
+        }
+        const auto root = [&](Real outside, Real inside)
+        {
+            for (int i = 0; i < 60; ++i)
+            {
+                const Real middle = 0.5 * (outside + inside);
+                if (phi(middle) > 0.0)
+                {
+                    outside = middle;
+                }
+                else
+                {
+                    inside = middle;
+                }
+            }
+            return 0.5 * (outside + inside);
+        };
+        enterLeave = {root(0.0, deepest), root(1.0, deepest)};
+    }
+};
+
 // Which way the normal of a point found inside `target` points: away from the target when the
 // points belong to A (target is B), towards it when they belong to B.
 enum class Side
@@ -314,6 +378,37 @@ void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& 
                     vertexBounds, out);
     edgesThrough(corners, kBoxEdges, poseA, meshTarget, cornerBounds, Side::PointsOfA, out);
     edgesThrough(mesh.vertices(), mesh.featureEdges(), poseB, boxTarget, vertexBounds, Side::PointsOfB, out);
+}
+
+void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                        std::vector<ContactPoint>& out)
+{
+    const MeshGeometry& mesh = *b.geometry;
+    if (farApart(poseA, a.halfLength + a.radius, poseB, mesh.boundingRadius(), threshold))
+    {
+        return;
+    }
+    // the capsule is a ball swept along its axis: balls at least every half radius along it, each
+    // against the mesh's distance, support it lying on a face; the mesh's vertices and sharp edges
+    // against the capsule's distance catch corners and ridges pressing into its side
+    const int samples = std::max(2, static_cast<int>(std::ceil(4.0 * a.halfLength / a.radius)) + 1);
+    for (int k = 0; k < samples; ++k)
+    {
+        const Real along = a.halfLength * (2.0 * k / (samples - 1) - 1.0);
+        const Vec3 centre = poseA.toWorld(Vec3(0.0, 0.0, along));
+        const MeshDistance d = mesh.distance(poseB.toLocal(centre), threshold + a.radius);
+        const Real phi = d.phi - a.radius;
+        if (phi < threshold)
+        {
+            const Vec3 normal = poseB.rotation * d.gradient;
+            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi});
+        }
+    }
+    thread_local std::vector<Real> vertexBounds;
+    const CapsuleTarget capsuleTarget(a, poseA);
+    verticesAgainst(mesh.vertices(), poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+                    vertexBounds, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), poseB, capsuleTarget, vertexBounds, Side::PointsOfB, out);
 }
 
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,

@@ -18,6 +18,8 @@ void collideSphereMesh(const Sphere& a, const Pose& poseA, const Mesh& b, const 
                        std::vector<ContactPoint>& out);
 void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                     std::vector<ContactPoint>& out);
+void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                        std::vector<ContactPoint>& out);
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                      std::vector<ContactPoint>& out);
 

@@ -10,9 +10,11 @@
 //   box      (swapped)     separating axis + clip   corners          vertices and edges both ways
 //   plane    (swapped)     (swapped)                never (static)   vertices
 //   mesh     (swapped)     (swapped)                (swapped)        vertices and edges both ways
+// Capsules have their own rows, in capsule_contacts.cpp (against a mesh: mesh_contacts.cpp).
 #include "collision/narrow_phase.hpp"
 
 #include "collision/box_box.hpp"
+#include "collision/capsule_contacts.hpp"
 #include "collision/mesh_contacts.hpp"
 #include "geometry/signed_distance.hpp"
 
@@ -115,6 +117,10 @@ template <class Collide> void swapped(Collide collide, std::vector<ContactPoint>
 void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
                    std::vector<ContactPoint>& out)
 {
+    if (collideCapsulePair(a, poseA, b, poseB, threshold, out))
+    {
+        return;
+    }
     if (const auto* sa = std::get_if<Sphere>(&a))
     {
         if (const auto* sb = std::get_if<Sphere>(&b))

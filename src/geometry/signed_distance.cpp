@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "geometry/signed_distance.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace impulse
@@ -45,6 +46,18 @@ DistanceSample boxDistance(const Vec3& halfExtents, const Vec3& pointLocal)
 DistanceSample planeDistance(const Plane& plane, const Vec3& pointLocal)
 {
     return {plane.normal.dot(pointLocal) - plane.offset, plane.normal};
+}
+
+DistanceSample capsuleDistance(const Capsule& capsule, const Vec3& pointLocal)
+{
+    const Real along = std::clamp(pointLocal.z(), -capsule.halfLength, capsule.halfLength);
+    const Vec3 away = pointLocal - Vec3(0.0, 0.0, along);
+    const Real distance = away.norm();
+    if (distance > 0.0)
+    {
+        return {distance - capsule.radius, away / distance};
+    }
+    return {-capsule.radius, Vec3::UnitX()};
 }
 
 } // namespace impulse

@@ -17,5 +17,8 @@ struct DistanceSample
 DistanceSample sphereDistance(Real radius, const Vec3& pointLocal);
 DistanceSample boxDistance(const Vec3& halfExtents, const Vec3& pointLocal);
 DistanceSample planeDistance(const Plane& plane, const Vec3& pointLocal);
+/// Capsule along the body z axis: the distance to the segment [-halfLength, halfLength] e_z, less the
+/// radius. On the axis itself the gradient is e_x, so that the result is deterministic.
+DistanceSample capsuleDistance(const Capsule& capsule, const Vec3& pointLocal);
 
 } // namespace impulse

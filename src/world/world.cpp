@@ -44,6 +44,12 @@ void validateShape(const Shape& shape)
                 "must be a finite non-zero vector");
         require(std::isfinite(plane->offset), "offset", "must be finite");
     }
+    else if (const auto* capsule = std::get_if<Capsule>(&shape))
+    {
+        require(std::isfinite(capsule->radius) && capsule->radius > 0.0, "radius", "must be a positive finite number");
+        require(std::isfinite(capsule->halfLength) && capsule->halfLength > 0.0, "half_length",
+                "must be a positive finite number");
+    }
     else if (const auto* mesh = std::get_if<Mesh>(&shape))
     {
         require(mesh->geometry != nullptr, "mesh", "has no geometry (build it with MeshGeometry::build)");
@@ -142,7 +148,10 @@ BodyId World::createBody(const BodyDef& def)
         body.invMass = 1.0 / body.mass;
         require(std::isfinite(body.mass) && std::isfinite(body.invMass) && body.mass > 0.0,
                 def.mass > 0.0 ? "mass" : "density", "gives a mass that is not a positive finite number");
-        body.principalInertia = body.mass * unitInertia(body.shape);
+        require(finite(def.principalInertia) && (def.principalInertia.array() >= 0.0).all(), "inertia",
+                "must be three non-negative finite numbers");
+        body.principalInertia =
+            def.principalInertia.isZero(0.0) ? Vec3(body.mass * unitInertia(body.shape)) : def.principalInertia;
         body.invPrincipalInertia = body.principalInertia.cwiseInverse();
         require(body.principalInertia.allFinite() && body.invPrincipalInertia.allFinite(),
                 def.mass > 0.0 ? "mass" : "density", "gives an inertia that is not a positive finite number");
@@ -161,6 +170,26 @@ BodyId World::createBody(const BodyDef& def)
     body.predicted = body.pose();
     m_impl->bodies.push_back(body);
     return {static_cast<std::uint32_t>(m_impl->bodies.size() - 1)};
+}
+
+void World::setState(BodyId id, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
+                     const Vec3& angularVelocity)
+{
+    RigidBody& body = m_impl->bodies.at(id.index);
+    require(body.dynamic, "static", "a static body cannot be moved");
+    require(finite(position), "position", "must be finite");
+    require(finite(linearVelocity), "velocity", "must be finite");
+    require(finite(angularVelocity), "angular_velocity", "must be finite");
+    require(orientation.coeffs().allFinite() && orientation.coeffs().stableNorm() > 0.0, "orientation",
+            "must be a finite non-zero quaternion");
+    body.position = position;
+    body.orientation = Quat(orientation.coeffs().stableNormalized());
+    body.rotation = body.orientation.toRotationMatrix();
+    body.linearVelocity = linearVelocity;
+    body.angularMomentum =
+        body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() * angularVelocity;
+    updateDerivedQuantities(body);
+    body.predicted = body.pose();
 }
 
 void World::step(const StepOptions& options)
@@ -209,6 +238,16 @@ Vec3 World::principalInertia(BodyId body) const
 const Shape& World::shape(BodyId body) const
 {
     return m_impl->bodies.at(body.index).shape;
+}
+
+MaterialId World::material(BodyId body) const
+{
+    return m_impl->bodies.at(body.index).material;
+}
+
+const Material& World::material(MaterialId material) const
+{
+    return m_impl->materials.at(material.index);
 }
 
 Vec3 World::gravity() const

@@ -28,6 +28,7 @@ struct Scene
     Real duration = 0.0;                ///< seconds
     std::vector<BodyId> dynamicBodies;  ///< in file order; trajectory body k is dynamicBodies[k]
     std::vector<std::string> bodyNames; ///< per world body, "" where the file names none
+    std::vector<BodyDef> bodyDefs;      ///< per world body, as the file defines it
 };
 
 /// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.
