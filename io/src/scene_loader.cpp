@@ -256,6 +256,7 @@ struct MeshLibrary
 {
     std::filesystem::path directory; ///< relative mesh paths start here: the scene file's directory
     std::map<std::tuple<std::string, Real, Real, Real, int>, std::shared_ptr<const MeshGeometry>> prepared;
+    std::map<const MeshGeometry*, MeshSource> sources; ///< what each prepared geometry was read from
 };
 
 Mesh readMesh(const Field& field, MeshLibrary& library)
@@ -293,6 +294,7 @@ Mesh readMesh(const Field& field, MeshLibrary& library)
         }
         const auto geometry = MeshGeometry::build(mesh, options);
         library.prepared.emplace(key, geometry);
+        library.sources.emplace(geometry.get(), MeshSource{path, scale, options.resolution});
         return Mesh{geometry};
     }
     catch (const MeshFileError& error)
@@ -404,7 +406,7 @@ void readSolver(const Field& field, StepOptions& options)
 
 Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory)
 {
-    MeshLibrary meshes{directory, {}};
+    MeshLibrary meshes{directory, {}, {}};
     Json document;
     try
     {
@@ -429,7 +431,7 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         worldDef.gravity = root.at("gravity").vec3();
     }
     Scene scene{
-        root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}};
+        root.has("name") ? root.at("name").text() : std::string(), World(worldDef), StepOptions{}, 0.0, {}, {}, {}, {}};
     if (root.has("description"))
     {
         root.at("description").text();
@@ -576,6 +578,8 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         }
         scene.bodyNames.push_back(body.has("name") ? body.at("name").text() : std::string());
         scene.bodyDefs.push_back(def);
+        const auto* mesh = std::get_if<Mesh>(&def.shape);
+        scene.meshSources.push_back(mesh != nullptr ? meshes.sources.at(mesh->geometry.get()) : MeshSource{});
     }
     return scene;
 }

@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace impulse::mujoco
 {
@@ -54,6 +57,33 @@ std::string uniqueName(const std::string& wanted, std::size_t index, std::set<st
     return name;
 }
 
+// Text for an XML attribute value in double quotes.
+std::string escaped(const std::string& text)
+{
+    std::string out;
+    for (const char c : text)
+    {
+        switch (c)
+        {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
 // Contact attributes of a geom or pair for restitution eps and friction mu.
 std::string contactAttributes(Real eps, Real mu, Real timeconst, bool pair)
 {
@@ -82,6 +112,9 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
     }
 
     std::ostringstream custom;
+    std::ostringstream assets;
+    // one mesh asset per file, scale and grid resolution, as the scene loader shares geometries
+    std::map<std::tuple<std::string, Real, Real, Real, int>, std::string> meshAssets;
     std::ostringstream statics;
     std::ostringstream bodies;
     std::ostringstream keyQpos;
@@ -98,6 +131,10 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
         const BodyState s = world.state(id);
         const Shape& shape = world.shape(id);
         std::string geom;
+        // pose of the geom's frame in the body frame, written for meshes only
+        Vec3 geomPosition = Vec3::Zero();
+        Quat geomOrientation = Quat::Identity();
+        bool placedGeom = false;
         if (const auto* sphere = std::get_if<Sphere>(&shape))
         {
             geom = "type=\"sphere\" size=\"" + num(sphere->radius) + "\"";
@@ -123,6 +160,40 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
                    << num(offset) << "\"/>\n";
             continue;
         }
+        else if (const auto* mesh = std::get_if<Mesh>(&shape))
+        {
+            const io::MeshSource* source = i < scene.meshSources.size() ? &scene.meshSources[i] : nullptr;
+            if (source == nullptr || source->file.empty())
+            {
+                throw std::invalid_argument("body " + name +
+                                            ": a mesh is exported as its file, and the scene does not say which "
+                                            "file this body's mesh was read from");
+            }
+            const std::string file = std::filesystem::absolute(source->file).lexically_normal().string();
+            const auto key =
+                std::make_tuple(file, source->scale.x(), source->scale.y(), source->scale.z(), source->resolution);
+            auto asset = meshAssets.find(key);
+            if (asset == meshAssets.end())
+            {
+                const std::string assetName =
+                    uniqueName("mesh_" + std::filesystem::path(file).stem().string(), meshAssets.size(), used);
+                asset = meshAssets.emplace(key, assetName).first;
+                assets << "    <mesh name=\"" << assetName << "\" file=\"" << escaped(file) << "\" scale=\""
+                       << vec(source->scale) << "\"/>\n";
+                if (source->resolution != 0)
+                {
+                    custom << "    <numeric name=\"" << custom::kMeshResolutionPrefix << assetName << "\" data=\""
+                           << source->resolution << "\"/>\n";
+                }
+            }
+            geom = "type=\"mesh\" mesh=\"" + asset->second + "\"";
+            // the file's frame in the body frame; MuJoCo moves its mesh frame to the centre of mass
+            // and principal axes and the geom's pose with it, which lands it on the body frame
+            const Pose& frame = mesh->geometry->frameInMesh();
+            geomOrientation = frame.orientation.conjugate();
+            geomPosition = -(geomOrientation * frame.position);
+            placedGeom = true;
+        }
         else
         {
             throw std::invalid_argument("body " + name + ": this shape has no MJCF equivalent yet");
@@ -130,9 +201,20 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
 
         if (!world.isDynamic(id))
         {
-            statics << "    <geom name=\"" << name << "\" " << geom << " pos=\"" << vec(s.position) << "\" quat=\""
-                    << quat(s.orientation) << "\" " << contact << "/>\n";
+            Vec3 position = s.position;
+            Quat orientation = s.orientation;
+            if (placedGeom)
+            {
+                position = s.position + s.orientation * geomPosition;
+                orientation = s.orientation * geomOrientation;
+            }
+            statics << "    <geom name=\"" << name << "\" " << geom << " pos=\"" << vec(position) << "\" quat=\""
+                    << quat(orientation) << "\" " << contact << "/>\n";
             continue;
+        }
+        if (placedGeom)
+        {
+            geom += " pos=\"" + vec(geomPosition) + "\" quat=\"" + quat(geomOrientation) + "\"";
         }
         ++dynamicCount;
         bodies << "    <body name=\"" << name << "\" pos=\"" << vec(s.position) << "\" quat=\"" << quat(s.orientation)
@@ -184,7 +266,7 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
     xml << "<!-- Written by impulse export-mjcf: the scene's bodies at full precision, its restitution and solver\n"
            "     options as custom fields, MuJoCo contact parameters as docs/mujoco.md describes. -->\n";
     xml << "<mujoco model=\"" << uniqueName(scene.name.empty() ? "scene" : scene.name, 0, used) << "\">\n";
-    xml << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
+    xml << "  <compiler angle=\"radian\" inertiafromgeom=\"false\" exactmeshinertia=\"true\"/>\n";
     xml << "  <option timestep=\"" << num(dt) << "\" gravity=\"" << vec(world.gravity())
         << "\" cone=\"elliptic\" integrator=\"Euler\"/>\n";
     const std::size_t contacts = 100 + 40 * dynamicCount;
@@ -204,6 +286,10 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
         << "\"/>\n";
     xml << custom.str();
     xml << "  </custom>\n";
+    if (!assets.str().empty())
+    {
+        xml << "  <asset>\n" << assets.str() << "  </asset>\n";
+    }
     xml << "  <worldbody>\n" << statics.str() << bodies.str() << "  </worldbody>\n";
     if (!pairs.str().empty())
     {

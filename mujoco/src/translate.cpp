@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // MJCF (compiled by MuJoCo) to an impulse world: what is supported, what is refused, and the
 // conversion between MuJoCo's free-joint coordinates and impulse's centre-of-mass states.
+#include <impulse/mesh.hpp>
 #include <impulse/mujoco/mujoco.hpp>
 
 #include <algorithm>
@@ -216,7 +217,7 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
     for (const auto& [name, value] : custom.numeric)
     {
         if (name.rfind("impulse_", 0) != 0 || name.rfind(custom::kGeomRestitutionPrefix, 0) == 0 ||
-            name.rfind(custom::kPlanePrefix, 0) == 0)
+            name.rfind(custom::kPlanePrefix, 0) == 0 || name.rfind(custom::kMeshResolutionPrefix, 0) == 0)
         {
             continue;
         }
@@ -248,10 +249,41 @@ bool sameFrame(const mjModel* m, int geom, int body)
 
 } // namespace
 
-std::string meshGeomProblem(const mjModel* m, int geom)
+std::shared_ptr<const MeshGeometry> meshGeometry(const mjModel* m, int mesh, int resolution)
 {
-    // Wired to the Mesh shape once it is in the core; until then a mesh geom cannot be translated.
-    return "geom " + nameOf(m, mjOBJ_GEOM, geom) + " is a mesh: mesh geoms need impulse's Mesh shape";
+    TriangleMesh triangles;
+    const int vertexCount = m->mesh_vertnum[mesh];
+    const float* vertices = m->mesh_vert + 3 * static_cast<std::ptrdiff_t>(m->mesh_vertadr[mesh]);
+    triangles.vertices.reserve(static_cast<std::size_t>(vertexCount));
+    for (int v = 0; v < vertexCount; ++v)
+    {
+        triangles.vertices.emplace_back(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+    }
+    const int faceCount = m->mesh_facenum[mesh];
+    const int* faces = m->mesh_face + 3 * static_cast<std::ptrdiff_t>(m->mesh_faceadr[mesh]);
+    triangles.triangles.reserve(static_cast<std::size_t>(faceCount));
+    for (int f = 0; f < faceCount; ++f)
+    {
+        std::array<std::uint32_t, 3> face{};
+        for (int k = 0; k < 3; ++k)
+        {
+            const int index = faces[3 * f + k];
+            if (index < 0 || index >= vertexCount)
+            {
+                throw MeshError("face " + std::to_string(f) + " refers to vertex " + std::to_string(index) +
+                                ", the mesh has " + std::to_string(vertexCount));
+            }
+            face[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(index);
+        }
+        triangles.triangles.push_back(face);
+    }
+    return MeshGeometry::build(triangles, MeshOptions{resolution});
+}
+
+std::string meshGeomProblem(const mjModel* m, int geom, const std::string& reason)
+{
+    return "mesh geom " + nameOf(m, mjOBJ_GEOM, geom) + " (mesh " + nameOf(m, mjOBJ_MESH, m->geom_dataid[geom]) +
+           "): not a closed solid: " + reason;
 }
 
 LinkState readLink(const Translation::Link& link, const mjModel* m, const mjData* d)
@@ -399,9 +431,13 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         }
     }
 
-    // shape of one colliding geom, or a problem
-    const auto shapeOf = [&](int g, bool isStatic) -> std::optional<Shape>
+    // prepared meshes by (MuJoCo mesh id, grid resolution), shared by every geom that uses them
+    std::map<std::pair<int, int>, std::shared_ptr<const MeshGeometry>> meshes;
+    // shape of one colliding geom, or a problem; `frame` receives the pose of the impulse body
+    // frame in the geom's frame (the identity except for meshes)
+    const auto shapeOf = [&](int g, bool isStatic, Pose& frame) -> std::optional<Shape>
     {
+        frame = Pose{};
         const mjtNum* size = m->geom_size + 3 * g;
         switch (m->geom_type[g])
         {
@@ -419,11 +455,40 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
             }
             return Plane{};
         case mjGEOM_MESH:
-            problems.add(meshGeomProblem(m, g));
-            return std::nullopt;
+        {
+            const int mesh = m->geom_dataid[g];
+            int resolution = 0;
+            const std::string field = std::string(custom::kMeshResolutionPrefix) + plainName(m, mjOBJ_MESH, mesh);
+            if (const std::vector<mjtNum>* value = custom.find(field))
+            {
+                if (value->size() != 1 || !((*value)[0] == 0.0 || ((*value)[0] >= 4.0 && (*value)[0] <= 1024.0)) ||
+                    (*value)[0] != std::floor((*value)[0]))
+                {
+                    problems.add("custom numeric '" + field + "' must be 0 or a whole number of cells in [4, 1024]");
+                    return std::nullopt;
+                }
+                resolution = static_cast<int>((*value)[0]);
+            }
+            std::shared_ptr<const MeshGeometry>& geometry = meshes[{mesh, resolution}];
+            if (!geometry)
+            {
+                try
+                {
+                    geometry = meshGeometry(m, mesh, resolution);
+                }
+                catch (const MeshError& error)
+                {
+                    meshes.erase({mesh, resolution});
+                    problems.add(meshGeomProblem(m, g, error.what()));
+                    return std::nullopt;
+                }
+            }
+            frame = geometry->frameInMesh();
+            return Mesh{geometry};
+        }
         default:
             problems.add(std::string(geomTypeName(m->geom_type[g])) + " geom " + nameOf(m, mjOBJ_GEOM, g) +
-                         ": impulse has no such shape (it has sphere, box, capsule and plane)");
+                         ": impulse has no such shape (it has sphere, box, capsule, plane and mesh)");
             return std::nullopt;
         }
     };
@@ -449,7 +514,8 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
     DataPtr scratch; // kinematics at qpos0, only for geoms on static child bodies
     for (const int g : weldGeoms[0])
     {
-        const std::optional<Shape> shape = shapeOf(g, true);
+        Pose frame;
+        const std::optional<Shape> shape = shapeOf(g, true, frame);
         if (!shape)
         {
             continue;
@@ -496,6 +562,13 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         {
             def.position = position;
             def.orientation = orientation;
+            if (std::holds_alternative<Mesh>(def.shape))
+            {
+                // a mesh body sits at the mesh's centre of mass on its principal axes
+                const Quat placed = orientation.normalized();
+                def.position = position + placed * frame.position;
+                def.orientation = (placed * frame.orientation).normalized();
+            }
         }
         def.material = materialOf(g);
         if (!problems.empty())
@@ -535,19 +608,49 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
                          " sits on a child body: put it on the free body itself");
             continue;
         }
-        const std::optional<Shape> shape = shapeOf(g, false);
+        Pose frame;
+        const std::optional<Shape> shape = shapeOf(g, false, frame);
         if (!shape)
         {
             continue;
         }
-        if (!sameFrame(m, g, b))
+        const bool mesh = std::holds_alternative<Mesh>(*shape);
+        Vec3 inertia = vecAt(m->body_inertia + 3 * b);
+        Vec3 inertialPosition = vecAt(m->body_ipos + 3 * b);
+        Quat inertialOrientation = quatAt(m->body_iquat + 4 * b);
+        if (mesh)
+        {
+            // the impulse body: the mesh's centre of mass and principal axes as MeshGeometry finds
+            // them, placed by the geom; the compiled inertia expressed on those axes
+            const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
+            const Vec3 position = vecAt(m->geom_pos + 3 * g) + geomOrientation * frame.position;
+            const Quat orientation = (geomOrientation * frame.orientation).normalized();
+            const Mat3 compiledAxes = inertialOrientation.normalized().toRotationMatrix();
+            const Mat3 axes = orientation.toRotationMatrix();
+            const Mat3 tensor =
+                axes.transpose() * compiledAxes * inertia.asDiagonal() * compiledAxes.transpose() * axes;
+            const Real tolerance = kMeshFrameTolerance;
+            const Real largest = std::max<Real>(inertia.maxCoeff(), 0.0);
+            const Mat3 offDiagonal = tensor - Mat3(tensor.diagonal().asDiagonal());
+            if ((position - inertialPosition).norm() > tolerance * m->geom_rbound[g] ||
+                offDiagonal.cwiseAbs().maxCoeff() > tolerance * largest)
+            {
+                problems.add("mesh geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
+                             " is not centred on the body's centre of mass with its axes on the principal axes "
+                             "(its inertial frame)");
+                continue;
+            }
+            inertia = tensor.diagonal();
+            inertialPosition = position;
+            inertialOrientation = orientation;
+        }
+        else if (!sameFrame(m, g, b))
         {
             problems.add("geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
                          " is not centred on the body's centre of mass with its axes on the principal axes "
                          "(its inertial frame)");
             continue;
         }
-        const Vec3 inertia = vecAt(m->body_inertia + 3 * b);
         if (!(m->body_mass[b] > 0.0) || !((inertia.array() > 0.0).all()))
         {
             problems.add("free body " + nameOf(m, mjOBJ_BODY, b) + " needs a positive mass and inertia");
@@ -558,8 +661,8 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         link.mjBody = b;
         link.qposAddress = m->jnt_qposadr[joint];
         link.dofAddress = m->jnt_dofadr[joint];
-        link.inertialPosition = vecAt(m->body_ipos + 3 * b);
-        link.inertialOrientation = quatAt(m->body_iquat + 4 * b);
+        link.inertialPosition = inertialPosition;
+        link.inertialOrientation = inertialOrientation;
         link.offset = !link.inertialPosition.isZero(0.0) || link.inertialOrientation.w() != 1.0 ||
                       !link.inertialOrientation.vec().isZero(0.0);
         const MaterialId material = materialOf(g);

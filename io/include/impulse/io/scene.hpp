@@ -19,6 +19,15 @@ class SceneError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+/// Where a mesh body's shape was read from: the file as the loader opened it (relative paths
+/// joined to the scene's directory), the scale applied to its vertices and the grid resolution.
+struct MeshSource
+{
+    std::filesystem::path file; ///< empty for bodies of other shapes
+    Vec3 scale = Vec3::Ones();
+    int resolution = 0;
+};
+
 /// A loaded scene: the world, the solver options and how long to run.
 struct Scene
 {
@@ -29,6 +38,8 @@ struct Scene
     std::vector<BodyId> dynamicBodies;  ///< in file order; trajectory body k is dynamicBodies[k]
     std::vector<std::string> bodyNames; ///< per world body, "" where the file names none
     std::vector<BodyDef> bodyDefs;      ///< per world body, as the file defines it
+    /// per world body, where its mesh was read from (file empty where the shape is no mesh)
+    std::vector<MeshSource> meshSources;
 };
 
 /// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <impulse/io/scene.hpp>
+#include <impulse/mesh.hpp>
 #include <impulse/world.hpp>
 
 #include <filesystem>
@@ -55,6 +56,9 @@ inline constexpr const char* kGeomRestitutionPrefix = "impulse_restitution:";
 /// Prefix of a plane's exact normal and offset, "impulse_plane:GEOM" = (nx, ny, nz, offset).
 inline constexpr const char* kPlanePrefix = "impulse_plane:";
 inline constexpr const char* kDuration = "impulse_duration"; ///< seconds, for `impulse run`
+/// Prefix of a mesh asset's signed distance grid resolution, "impulse_mesh_resolution:MESH" (0 or
+/// 4..1024 cells along the longest side, as the scene format's "resolution"; 0 if absent).
+inline constexpr const char* kMeshResolutionPrefix = "impulse_mesh_resolution:";
 } // namespace custom
 
 /// Restitution a model gets for a geom that states none: 0, which is also how MuJoCo's default
@@ -89,16 +93,25 @@ struct Translation
 /// Translates a compiled model, its free bodies placed as `d` says (qpos, qvel). Throws ModelError
 /// listing everything unsupported: joints other than free, actuators, tendons, equality
 /// constraints, bodies with several joints or nested free bodies, several colliding geoms on one
-/// body, geom types impulse has no shape for.
+/// body, geom types impulse has no shape for, meshes that are not closed solids. A mesh geom becomes
+/// a Mesh shape built from the compiled mesh (one MeshGeometry per MuJoCo mesh), its body at the
+/// mesh's centre of mass on its principal axes as placed by the geom.
 Translation translate(const mjModel* m, const mjData* d, const std::string& source);
 
 /// Loads an MJCF file as `impulse run` uses it: translated, starting from keyframe 0 if the model
 /// has one (else qpos0 at rest), dt from the model's timestep, duration from impulse_duration.
 io::Scene loadMjcfScene(const std::filesystem::path& path);
 
-/// Mesh geoms go through here. Until impulse has a triangle-mesh shape this reports, for the error
-/// list, why the geom cannot be translated.
-std::string meshGeomProblem(const mjModel* m, int geom);
+/// The closed solid of MuJoCo mesh `mesh` as impulse prepares it: MuJoCo's compiled vertices (float,
+/// in its mesh frame, already recentred on the centre of mass and principal axes) and faces.
+/// Throws MeshError with the reason when the mesh is not a closed solid.
+std::shared_ptr<const MeshGeometry> meshGeometry(const mjModel* m, int mesh, int resolution = 0);
+/// The refusal of mesh geom `geom` whose mesh is not a closed solid, with MeshError's reason.
+std::string meshGeomProblem(const mjModel* m, int geom, const std::string& reason);
+/// How far (relative to the geom's bounding radius, and to the largest principal moment) the mesh's
+/// centre of mass and principal axes found by MeshGeometry may lie from the compiled inertial frame
+/// of its free body: MuJoCo stores mesh vertices as float (relative precision 6e-8).
+inline constexpr Real kMeshFrameTolerance = 1e-5;
 
 /// World-frame state of the centre of mass of link `k`, read from qpos and qvel.
 struct LinkState
