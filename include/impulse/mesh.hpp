@@ -120,6 +120,7 @@ class MeshGeometry
   private:
     MeshGeometry();
     MeshDistance distanceFrom(const Vec3& pointBody, const SurfacePoint& closest) const;
+    Real searchRadius(const Vec3& pointBody) const;
 
     std::vector<Vec3> m_vertices;
     std::vector<std::array<std::uint32_t, 3>> m_triangles;

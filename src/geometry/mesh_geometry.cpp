@@ -394,8 +394,7 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
     {
         return coarse; // certainly not touching, or deep inside where the grid's normal serves
     }
-    // the grid is within gridError() of the truth: a search this wide finds the closest triangle
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, std::abs(coarse.phi) + gridError() + cell);
+    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(pointBody));
     return closest.found ? distanceFrom(pointBody, closest) : coarse;
 }
 
@@ -406,14 +405,22 @@ Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed) const
     {
         return coarse - gridError();
     }
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, std::abs(coarse) + gridError() + m_grid->cellSize());
+    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(pointBody));
     return closest.found ? TriangleBvh::signedDistance(pointBody, closest) : coarse - gridError();
+}
+
+Real MeshGeometry::searchRadius(const Vec3& pointBody) const
+{
+    // the grid is within gridError() of the truth: a search this wide finds the closest triangle
+    return std::abs(m_grid->sample(pointBody).phi) + gridError() + m_grid->cellSize();
 }
 
 Real MeshGeometry::gridError() const
 {
-    // trilinear weights of corners at most sqrt(3) cells away, plus the sweep beyond the exact band
-    return 2.0 * m_grid->cellSize();
+    // Within the exact band phi is 1-Lipschitz and exact at the corners of a cell, so the
+    // interpolant is off by at most the weighted distance to the corners: sqrt(3)/2 of a cell at
+    // the centre, less elsewhere. Beyond the band every corner is over two cells from the surface.
+    return m_grid->cellSize();
 }
 
 void MeshGeometry::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const
