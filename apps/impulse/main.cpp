@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The impulse command-line tool.
 #include "run_command.hpp"
+#include "see_commands.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -37,6 +38,8 @@ int main(int argc, char** argv)
                      "default none")
         ->check(CLI::NonNegativeNumber);
 
+    const impulse::app::SeeCommands see(app);
+
     try
     {
         app.parse(argc, argv);
@@ -46,6 +49,10 @@ int main(int argc, char** argv)
         // usage errors exit 2, like a scene that cannot be used
         const int code = app.exit(error);
         return code == 0 ? 0 : 2;
+    }
+    if (const std::optional<int> code = see.runChosen())
+    {
+        return *code;
     }
     return impulse::app::runScene(run);
 }
