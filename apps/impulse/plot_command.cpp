@@ -8,6 +8,8 @@
 #include <impulse/viz/series.hpp>
 #include <impulse/viz/tessellate.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +35,21 @@ std::string quoted(const std::string& text)
         }
     }
     return out + "'";
+}
+
+/// A gnuplot range: automatic, unless every value is the same (a ball rolling at constant height),
+/// where gnuplot would warn and guess; then a small band around the value.
+std::string rangeOf(const std::vector<Real>& values)
+{
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    if (low == values.end() || *high - *low > 1e-9 * std::max({1.0, std::abs(*low), std::abs(*high)}))
+    {
+        return "[*:*]";
+    }
+    const Real pad = std::max(0.05 * std::abs(*low), 0.05);
+    std::ostringstream range;
+    range << '[' << *low - pad << ':' << *high + pad << ']';
+    return range.str();
 }
 
 std::string gnuplotScript(const LoadedRun& run, const viz::Series& series, const std::string& outPath, int width,
@@ -79,20 +96,43 @@ std::string gnuplotScript(const LoadedRun& run, const viz::Series& series, const
     };
     const bool many = trajectory.bodyCount > 8; // a key of dozens of bodies hides the plot
     s << (many ? "unset key\n" : "set key\n");
+    auto all = [&](auto value)
+    {
+        std::vector<Real> values;
+        for (std::size_t k = 0; k < trajectory.bodyCount; ++k)
+        {
+            for (std::size_t i = 0; i < trajectory.sampleCount(); ++i)
+            {
+                values.push_back(value(i, k));
+            }
+        }
+        return values;
+    };
     s << "set title 'height against time'\nset xlabel 't (s)'\nset ylabel 'height (m)'\n"
+      << "set yrange " << rangeOf(all([&](std::size_t i, std::size_t k) { return series.height[k][i]; })) << "\n"
       << "plot " << curves("1:5") << "\n";
 
+    // each axis scales to its own data: a path that bends by centimetres over metres (a spinning
+    // ball under friction) shows its bend; the tick labels carry the scales
     s << "set title 'path of each centre'\nset xlabel 'x (m)'\nset ylabel 'y (m)'\nset zlabel 'z (m)' rotate "
          "parallel\n"
-      << "set view equal xyz\nset xyplane at 0\nset view 60,30\n"
+      << "set xyplane relative 0\nset view 60,35\nset xtics offset 0,-0.5\n"
+      << "set xrange " << rangeOf(all([&](std::size_t i, std::size_t k) { return trajectory.at(i, k).position.x(); }))
+      << "\nset yrange " << rangeOf(all([&](std::size_t i, std::size_t k) { return trajectory.at(i, k).position.y(); }))
+      << "\n"
+      << "set zrange " << rangeOf(all([&](std::size_t i, std::size_t k) { return trajectory.at(i, k).position.z(); }))
+      << "\n"
       << "splot " << curves("2:3:4") << "\n"
-      << "unset zlabel\n";
+      << "unset zlabel\nset xrange [*:*]\nset xtics offset 0,0\n";
 
     s << "set title 'speed against time'\nset xlabel 't (s)'\nset ylabel 'speed (m/s)'\n"
+      << "set yrange " << rangeOf(all([&](std::size_t i, std::size_t k) { return series.speed[k][i]; })) << "\n"
       << "plot " << curves("1:6") << "\n";
+    s << "set yrange " << rangeOf(series.energy) << "\n";
 
-    s << "set title " << quoted(run.view.hasMassProperties ? "total energy against time"
-                                                            : "energy per unit mass against time (no --scene)")
+    s << "set title "
+      << quoted(run.view.hasMassProperties ? "total energy against time"
+                                           : "energy per unit mass against time (no --scene)")
       << "\nset xlabel 't (s)'\nset ylabel " << quoted(series.energyLabel) << "\n"
       << "set key\nplot $energy using 1:2 with lines lw 1.5 lc rgb '#333333' title "
       << quoted(run.view.hasMassProperties ? "kinetic + potential" : "sum over bodies") << "\n";

@@ -10,9 +10,9 @@ namespace impulse::app
 struct PlotOptions
 {
     std::string trajectoryPath;
-    std::string scenePath;          ///< empty: no scene (energy per unit mass)
-    std::string outPath;            ///< empty: the trajectory's name with .png
-    std::string size = "1200x900";  ///< pixels
+    std::string scenePath;         ///< empty: no scene (energy per unit mass)
+    std::string outPath;           ///< empty: the trajectory's name with .png
+    std::string size = "1200x900"; ///< pixels
 };
 
 /// Draws height, the 3D path of each centre, speed and energy against time into one PNG with

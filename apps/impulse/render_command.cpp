@@ -14,6 +14,7 @@
 #include <iostream>
 #include <regex>
 #include <sstream>
+#include <variant>
 
 namespace impulse::app
 {
@@ -129,7 +130,8 @@ viz::Image renderSample(const LoadedRun& run, const Stage& stage, std::size_t sa
     std::vector<viz::DrawnMesh> meshes;
     for (std::size_t k = 0; k < stage.staticMeshes.size(); ++k)
     {
-        meshes.push_back({&stage.staticMeshes[k], run.view.staticBodies[k].pose});
+        const bool plane = std::holds_alternative<Plane>(run.view.staticBodies[k].shape);
+        meshes.push_back({&stage.staticMeshes[k], run.view.staticBodies[k].pose, !plane});
     }
     std::vector<viz::Polyline> lines;
     for (std::size_t k = 0; k < stage.dynamicMeshes.size(); ++k)

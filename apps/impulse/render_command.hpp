@@ -10,9 +10,9 @@ namespace impulse::app
 /// What `impulse render` was asked to do.
 struct RenderOptions
 {
-    std::string inputPath;  ///< a scene (.json), simulated here, or a trajectory CSV
-    std::string scenePath;  ///< for a trajectory: the scene it came from (shapes, ground)
-    std::string outPath;    ///< a directory for frames (and the MP4), or FILE.png for one picture
+    std::string inputPath; ///< a scene (.json), simulated here, or a trajectory CSV
+    std::string scenePath; ///< for a trajectory: the scene it came from (shapes, ground)
+    std::string outPath;   ///< a directory for frames (and the MP4), or FILE.png for one picture
     std::string size = "640x480";
     double fps = 30.0;
     std::optional<double> duration; ///< scene input: overrides the scene's duration

@@ -5,6 +5,7 @@
 
 #include "see_inputs.hpp"
 
+#include <impulse/viz/raster.hpp>
 #include <impulse/viz/series.hpp>
 #include <impulse/viz/tessellate.hpp>
 
@@ -94,18 +95,20 @@ class JsonWriter
 void writeMesh(JsonWriter& json, const viz::TriangleMesh& mesh)
 {
     JsonWriter compact(4);
-    auto vectors = [&](const std::vector<Vec3>& values)
-    {
-        compact.array(values, [&](const Vec3& v) { compact.number(v.x()).raw(",").number(v.y()).raw(",").number(v.z()); });
+    auto vectors = [&](const std::vector<Vec3>& values) {
+        compact.array(values,
+                      [&](const Vec3& v) { compact.number(v.x()).raw(",").number(v.y()).raw(",").number(v.z()); });
     };
     compact.raw("{\"positions\":");
     vectors(mesh.positions);
     compact.raw(",\"normals\":");
     vectors(mesh.normals);
     compact.raw(",\"colours\":");
-    compact.array(mesh.colours, [&](const viz::Rgb& c) { compact.number(c.r).raw(",").number(c.g).raw(",").number(c.b); });
+    compact.array(mesh.colours,
+                  [&](const viz::Rgb& c) { compact.number(c.r).raw(",").number(c.g).raw(",").number(c.b); });
     compact.raw(",\"indices\":");
-    compact.array(mesh.triangles, [&](const auto& t) { compact.number(t[0]).raw(",").number(t[1]).raw(",").number(t[2]); });
+    compact.array(mesh.triangles,
+                  [&](const auto& t) { compact.number(t[0]).raw(",").number(t[1]).raw(",").number(t[2]); });
     compact.raw("}");
     json.raw(compact.text());
 }
@@ -143,6 +146,8 @@ std::string pageData(const LoadedRun& run)
     const Vec3 centre = bounds.centre();
     json.raw(",\"centre\":[").number(centre.x()).raw(",").number(centre.y()).raw(",").number(centre.z()).raw("]");
     json.raw(",\"radius\":").number(std::max(bounds.radius(), 0.05));
+    const Vec3 eye = viz::frameCamera(bounds, up, 16.0 / 10.0).eye; // the browser window's shape is unknown
+    json.raw(",\"eye\":[").number(eye.x()).raw(",").number(eye.y()).raw(",").number(eye.z()).raw("]");
     json.raw(",\"times\":").array(kept, [&](std::size_t i) { json.number(trajectory.times[i]); });
 
     json.raw(",\"bodies\":[");
@@ -153,12 +158,13 @@ std::string pageData(const LoadedRun& run)
         json.raw(",\"colour\":").string(viz::hexColour(viz::bodyColour(k)));
         json.raw(",\"mesh\":");
         writeMesh(json, viz::bodyTriangles(run.view.dynamicShapes[k], viz::bodyColour(k)));
-        json.raw(",\"poses\":").array(kept,
-                                      [&](std::size_t i)
-                                      {
-                                          const io::BodySample& s = trajectory.at(i, k);
-                                          writePose(json, s.position, s.orientation);
-                                      });
+        json.raw(",\"poses\":")
+            .array(kept,
+                   [&](std::size_t i)
+                   {
+                       const io::BodySample& s = trajectory.at(i, k);
+                       writePose(json, s.position, s.orientation);
+                   });
         json.raw("}");
     }
     json.raw("],\"statics\":[");
@@ -177,7 +183,8 @@ std::string pageData(const LoadedRun& run)
     json.raw("],\"series\":{\"energyLabel\":").string(series.energyLabel);
     auto perBody = [&](const std::vector<std::vector<Real>>& values)
     {
-        json.array(values, [&](const std::vector<Real>& one) { json.array(kept, [&](std::size_t i) { json.number(one[i]); }); });
+        json.array(values, [&](const std::vector<Real>& one)
+                   { json.array(kept, [&](std::size_t i) { json.number(one[i]); }); });
     };
     json.raw(",\"height\":");
     perBody(series.height);
@@ -195,11 +202,20 @@ std::string escapeHtml(const std::string& text)
     {
         switch (c)
         {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
         }
     }
     return out;

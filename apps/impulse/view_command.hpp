@@ -10,8 +10,8 @@ namespace impulse::app
 struct ViewOptions
 {
     std::string trajectoryPath;
-    std::string scenePath; ///< empty: no scene (marker spheres, energy per unit mass)
-    std::string outPath;   ///< empty: the trajectory's name with .html
+    std::string scenePath;                             ///< empty: no scene (marker spheres, energy per unit mass)
+    std::string outPath;                               ///< empty: the trajectory's name with .html
     std::string threeDirectory = IMPULSE_THREE_JS_DIR; ///< where three.min.js and OrbitControls.js are
 };
 

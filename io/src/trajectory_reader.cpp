@@ -138,7 +138,8 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
         {
             fail(source, line, "orientation is not a unit quaternion");
         }
-        sample.orientation = q.normalized();
+        // kept bit for bit when already unit, as the writer leaves it; normalised when rounded by hand
+        sample.orientation = std::abs(q.norm() - 1.0) > 1e-9 ? q.normalized() : q;
         sample.linearVelocity = Vec3(v[9], v[10], v[11]);
         sample.angularVelocity = Vec3(v[12], v[13], v[14]);
         trajectory.samples.push_back(sample);

@@ -69,11 +69,12 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
 
-    # two bodies, a ground-free scene: the oblique collision, 2 s every 10 ms (playing it takes 2 s)
+    # two bodies, a ground-free scene: the oblique collision, 5 s every 10 ms; playing takes 5 s, time
+    # enough to pause it before it ends however slow the machine
     scene = os.path.join(args.scenes, "ball_ball_oblique.json")
     csv = os.path.join(args.work, "oblique.csv")
     page = os.path.join(args.work, "oblique.html")
-    run(args.impulse, "run", scene, "--duration", "2", "--every", "10", "--out", csv)
+    run(args.impulse, "run", scene, "--duration", "5", "--every", "10", "--out", csv)
     run(args.impulse, "view", csv, "--scene", scene, "--out", page)
     with open(page, encoding="utf-8") as file:
         html = file.read()
@@ -86,7 +87,7 @@ def main():
         driver.get("file://" + os.path.abspath(page))
         if wait_for(driver, "return window.impulseViewer && window.impulseViewer.ready", "the viewer starts"):
             frames = driver.execute_script("return impulseViewer.frameCount()")
-            check(frames == 201, "201 samples in the page (got %s)" % frames)
+            check(frames == 501, "501 samples in the page (got %s)" % frames)
             start = driver.execute_script("return impulseViewer.bodyPosition(0)")
 
             slider = driver.find_element(By.ID, "slider")
@@ -105,10 +106,13 @@ def main():
             driver.find_element(By.ID, "play").click()
             wait_for(driver, "return impulseViewer.frame() > 15", "playing advances the time")
             driver.find_element(By.ID, "play").click()
-            check(not driver.execute_script("return impulseViewer.playing()"), "pause stops playing")
+            paused_at = driver.execute_script("return impulseViewer.frame()")
+            time.sleep(0.3)
+            check(not driver.execute_script("return impulseViewer.playing()") and
+                  driver.execute_script("return impulseViewer.frame()") == paused_at, "pause stops playing")
 
             slider.send_keys(Keys.END)
-            check(driver.execute_script("return impulseViewer.frame()") == 200, "End shows the last sample")
+            check(driver.execute_script("return impulseViewer.frame()") == 500, "End shows the last sample")
 
             shot = os.path.join(args.work, "viewer_screenshot.png")
             check(driver.save_screenshot(shot), "screenshot saved")

@@ -2,10 +2,9 @@
 // PNG through libpng, the reference implementation of the format.
 #include <impulse/viz/raster.hpp>
 
-#include <png.h>
-
 #include <cstdio>
 #include <memory>
+#include <png.h>
 #include <stdexcept>
 
 namespace impulse::viz

@@ -149,11 +149,15 @@ Camera frameCamera(const Bounds& bounds, const Vec3& up, Real aspect)
     }
     e1.normalize();
     const Vec3 e2 = camera.up.cross(e1);
-    // front right and above: motion along x reads left to right, heights read upward
+    // front right and above: motion along x reads left to right, heights read upward; content that
+    // stays near one level (rolling, gliding) is seen from higher up, so its paths open out
+    const Vec3 extent = bounds.max - bounds.min;
+    const Real vertical = std::abs(extent.dot(camera.up));
+    const Real horizontal = (extent - extent.dot(camera.up) * camera.up).norm();
     const Real azimuth = -65.0 * std::numbers::pi / 180.0;
-    const Real elevation = 22.0 * std::numbers::pi / 180.0;
-    const Vec3 direction = std::cos(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2) +
-                           std::sin(elevation) * camera.up;
+    const Real elevation = (vertical < 0.25 * horizontal ? 40.0 : 22.0) * std::numbers::pi / 180.0;
+    const Vec3 direction =
+        std::cos(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2) + std::sin(elevation) * camera.up;
     const Real halfY = 0.5 * camera.fovYDegrees * std::numbers::pi / 180.0;
     const Real halfX = std::atan(aspect * std::tan(halfY));
     // far enough for the bounding sphere; then as close as the eight corners of the box allow, so
@@ -223,23 +227,23 @@ Image renderImage(const std::vector<DrawnMesh>& meshes, const std::vector<Polyli
     auto drawClipped = [&](const ViewVertex& a, const ViewVertex& b, const ViewVertex& c)
     {
         const Vec3 sa = toScreen(a.view), sb = toScreen(b.view), sc = toScreen(c.view);
-        rasteriseTriangle(
-            sa, sb, sc, buffer.width, buffer.height,
-            [&](int ix, int iy, Real w0, Real w1, Real w2)
-            {
-                const Real invDepth = w0 * sa.z() + w1 * sb.z() + w2 * sc.z();
-                const std::size_t i = static_cast<std::size_t>(iy) * buffer.width + ix;
-                if (static_cast<float>(invDepth) <= buffer.invDepth[i])
-                {
-                    return;
-                }
-                // perspective-correct weights
-                const Real p0 = w0 * sa.z() / invDepth, p1 = w1 * sb.z() / invDepth, p2 = w2 * sc.z() / invDepth;
-                buffer.invDepth[i] = static_cast<float>(invDepth);
-                buffer.world[i] = (p0 * a.world + p1 * b.world + p2 * c.world).cast<float>();
-                buffer.normal[i] = (p0 * a.normal + p1 * b.normal + p2 * c.normal).cast<float>();
-                buffer.colour[i] = (p0 * a.colour + p1 * b.colour + p2 * c.colour).cast<float>();
-            });
+        rasteriseTriangle(sa, sb, sc, buffer.width, buffer.height,
+                          [&](int ix, int iy, Real w0, Real w1, Real w2)
+                          {
+                              const Real invDepth = w0 * sa.z() + w1 * sb.z() + w2 * sc.z();
+                              const std::size_t i = static_cast<std::size_t>(iy) * buffer.width + ix;
+                              if (static_cast<float>(invDepth) <= buffer.invDepth[i])
+                              {
+                                  return;
+                              }
+                              // perspective-correct weights
+                              const Real p0 = w0 * sa.z() / invDepth, p1 = w1 * sb.z() / invDepth,
+                                         p2 = w2 * sc.z() / invDepth;
+                              buffer.invDepth[i] = static_cast<float>(invDepth);
+                              buffer.world[i] = (p0 * a.world + p1 * b.world + p2 * c.world).cast<float>();
+                              buffer.normal[i] = (p0 * a.normal + p1 * b.normal + p2 * c.normal).cast<float>();
+                              buffer.colour[i] = (p0 * a.colour + p1 * b.colour + p2 * c.colour).cast<float>();
+                          });
     };
     auto lerp = [](const ViewVertex& a, const ViewVertex& b, Real t)
     {
@@ -298,6 +302,10 @@ Image renderImage(const std::vector<DrawnMesh>& meshes, const std::vector<Polyli
         shadow.v = toLight.cross(shadow.u);
         for (const DrawnMesh& drawn : meshes)
         {
+            if (!drawn.castsShadow)
+            {
+                continue;
+            }
             for (const auto& triangle : drawn.mesh->triangles)
             {
                 const Vec3 a = shadow.toMap(drawn.pose.toWorld(drawn.mesh->positions[triangle[0]]));
@@ -306,7 +314,8 @@ Image renderImage(const std::vector<DrawnMesh>& meshes, const std::vector<Polyli
                 rasteriseTriangle(a, b, c, ShadowMap::size, ShadowMap::size,
                                   [&](int ix, int iy, Real w0, Real w1, Real w2)
                                   {
-                                      Real& nearest = shadow.nearest[static_cast<std::size_t>(iy) * ShadowMap::size + ix];
+                                      Real& nearest =
+                                          shadow.nearest[static_cast<std::size_t>(iy) * ShadowMap::size + ix];
                                       nearest = std::max(nearest, w0 * a.z() + w1 * b.z() + w2 * c.z());
                                   });
             }
@@ -341,7 +350,8 @@ Image renderImage(const std::vector<DrawnMesh>& meshes, const std::vector<Polyli
             const Real skyLight = 0.5 + 0.5 * n.dot(sceneUp);
             const Vec3 halfway = (toLight + toEye).normalized();
             const Real specular = 0.25 * std::pow(std::max(0.0, n.dot(halfway)), 48.0) * light;
-            Vec3 colour = buffer.colour[i].cast<Real>() * (0.30 + 0.18 * skyLight + 0.62 * diffuse) + Vec3::Constant(specular);
+            Vec3 colour =
+                buffer.colour[i].cast<Real>() * (0.30 + 0.18 * skyLight + 0.62 * diffuse) + Vec3::Constant(specular);
             // far ground fades into the horizon, so the finite plane reads as an endless floor
             const Vec3 fromCentre = p - settings.shadowBounds.centre();
             const Real across = (fromCentre - fromCentre.dot(sceneUp) * sceneUp).norm();

@@ -26,8 +26,8 @@ Series computeSeries(const io::Trajectory& trajectory, const SceneView& view)
                 const Mat3 rotation = s.orientation.toRotationMatrix();
                 const Vec3 omegaBody = rotation.transpose() * s.angularVelocity;
                 const Real rotational = 0.5 * omegaBody.dot(view.inertias[k].cwiseProduct(omegaBody));
-                series.energy[i] += view.masses[k] * (0.5 * s.linearVelocity.squaredNorm() + potentialPerMass) +
-                                    rotational;
+                series.energy[i] +=
+                    view.masses[k] * (0.5 * s.linearVelocity.squaredNorm() + potentialPerMass) + rotational;
             }
             else
             {

@@ -28,7 +28,7 @@
   stage.insertBefore(renderer.domElement, stage.firstChild);
 
   var scene = new THREE.Scene();
-  var camera = new THREE.PerspectiveCamera(40, 1, data.radius * 0.01, data.radius * 100);
+  var camera = new THREE.PerspectiveCamera(35, 1, data.radius * 0.01, data.radius * 100);
   camera.up.copy(up);
   scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 0.55));
   var sun = new THREE.DirectionalLight(0xffffff, 0.75);
@@ -76,19 +76,11 @@
   var centre = new THREE.Vector3().fromArray(data.centre);
   var controls = new THREE.OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
-  // front right and above, as the rendered frames see the scene
-  var side = new THREE.Vector3(1, 0, 0);
-  if (Math.abs(side.dot(up)) > 0.9) side.set(0, 1, 0);
-  side.addScaledVector(up, -side.dot(up)).normalize();
-  var across = new THREE.Vector3().crossVectors(up, side);
-  var azimuth = -65 * Math.PI / 180, elevation = 22 * Math.PI / 180;
-  var direction = side.clone().multiplyScalar(Math.cos(elevation) * Math.cos(azimuth))
-    .addScaledVector(across, Math.cos(elevation) * Math.sin(azimuth))
-    .addScaledVector(up, Math.sin(elevation));
-  camera.position.copy(centre).addScaledVector(direction, data.radius * 3.6);
+  // the camera of the rendered frames (impulse render), which the page is given
+  camera.position.fromArray(data.eye);
   controls.update();
-  sun.position.copy(up).multiplyScalar(2.2).addScaledVector(direction, 0.5).multiplyScalar(data.radius * 4)
-    .add(centre);
+  var toEye = camera.position.clone().sub(centre).normalize();
+  sun.position.copy(centre).addScaledVector(up, data.radius * 4).addScaledVector(toEye, data.radius);
   controls.addEventListener('change', draw);
 
   // ---- plots ----

@@ -37,6 +37,7 @@ struct DrawnMesh
 {
     const TriangleMesh* mesh = nullptr;
     Pose pose;
+    bool castsShadow = true; ///< false for the ground: nothing lies below it, and it is large
 };
 
 /// A line through world points, such as the path of a body's centre.
