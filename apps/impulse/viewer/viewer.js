@@ -77,7 +77,8 @@
   var controls = new THREE.OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
   // the camera of the rendered frames (impulse render), which the page is given
-  camera.position.fromArray(data.eye);
+  // (a little farther: the page's view is rarely as wide as the frames)
+  camera.position.fromArray(data.eye).sub(centre).multiplyScalar(1.2).add(centre);
   controls.update();
   var toEye = camera.position.clone().sub(centre).normalize();
   sun.position.copy(centre).addScaledVector(up, data.radius * 4).addScaledVector(toEye, data.radius);
@@ -111,7 +112,7 @@
     var g = canvas.getContext('2d');
     g.setTransform(ratio, 0, 0, ratio, 0, 0);
     g.clearRect(0, 0, width, height);
-    var left = 52, right = width - 10, top = 20, bottom = height - 22;
+    var left = 52, right = width - 18, top = 20, bottom = height - 22;
     var t0 = times[0], t1 = times[last] > t0 ? times[last] : t0 + 1;
     function x(t) { return left + (t - t0) / (t1 - t0) * (right - left); }
     function y(v) { return bottom - (v - plot.low) / (plot.high - plot.low) * (bottom - top); }
