@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <regex>
 #include <sstream>
 #include <variant>
 
@@ -153,6 +152,13 @@ viz::Image renderSample(const LoadedRun& run, const Stage& stage, std::size_t sa
     return viz::renderImage(meshes, lines, stage.camera, stage.settings);
 }
 
+/// frame_NNNNN.png, as this command names frames
+bool isFrameName(const std::string& name)
+{
+    return name.size() == 15 && name.starts_with("frame_") && name.ends_with(".png") &&
+           std::all_of(name.begin() + 6, name.begin() + 11, [](char c) { return c >= '0' && c <= '9'; });
+}
+
 bool endsWithPng(const std::string& path)
 {
     return path.size() >= 4 && std::filesystem::path(path).extension() == ".png";
@@ -226,10 +232,9 @@ int renderRun(const RenderOptions& options)
         const std::filesystem::path directory(options.outPath);
         std::filesystem::create_directories(directory);
         // frames of an earlier, longer render would otherwise join the video
-        static const std::regex framePattern("frame_[0-9]{5}\\.png");
         for (const auto& entry : std::filesystem::directory_iterator(directory))
         {
-            if (std::regex_match(entry.path().filename().string(), framePattern))
+            if (isFrameName(entry.path().filename().string()))
             {
                 std::filesystem::remove(entry.path());
             }

@@ -3,9 +3,9 @@
 
 #include <impulse/io/scene.hpp>
 
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -50,13 +50,15 @@ LoadedRun loadRun(const std::string& trajectoryPath, const std::string& scenePat
 
 std::pair<int, int> parseSize(const std::string& text, const std::string& option)
 {
-    static const std::regex pattern("([0-9]{1,5})x([0-9]{1,5})");
-    std::smatch match;
-    if (std::regex_match(text, match, pattern))
+    int width = 0;
+    int height = 0;
+    const char* end = text.data() + text.size();
+    const auto [afterWidth, widthError] = std::from_chars(text.data(), end, width);
+    if (widthError == std::errc() && afterWidth != end && *afterWidth == 'x')
     {
-        const int width = std::stoi(match[1]);
-        const int height = std::stoi(match[2]);
-        if (width >= 16 && height >= 16 && width <= 8192 && height <= 8192)
+        const auto [afterHeight, heightError] = std::from_chars(afterWidth + 1, end, height);
+        if (heightError == std::errc() && afterHeight == end && width >= 16 && height >= 16 && width <= 8192 &&
+            height <= 8192)
         {
             return {width, height};
         }

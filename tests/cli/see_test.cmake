@@ -91,7 +91,13 @@ expect_success(plot "${pair}" --size 640x480)
 check_png("${WORK}/pair.png" 640 480)
 
 # ---- render: a scene to frames and a video, a trajectory to one picture ----
+# a frame left by an earlier, longer render must not join this one (nor its video)
+file(WRITE "${WORK}/frames/frame_00099.png" "stale")
+file(WRITE "${WORK}/frames/notes.txt" "kept")
 expect_success(render "${drop_scene}" --duration 0.5 --fps 10 --size 160x120 --out "${WORK}/frames")
+if(NOT EXISTS "${WORK}/frames/notes.txt")
+    check_failed("render removed a file that is not one of its frames")
+endif()
 file(GLOB frames "${WORK}/frames/frame_*.png")
 list(LENGTH frames frame_count)
 if(frame_count EQUAL 6)
