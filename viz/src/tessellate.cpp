@@ -76,33 +76,19 @@ TriangleMesh sphereTriangles(const Sphere& sphere, Rgb colour)
 
 TriangleMesh boxTriangles(const Box& box, Rgb colour)
 {
-    TriangleMesh mesh;
-    const Vec3& h = box.halfExtents;
-    // each face: its outward axis and sign; corners counter-clockwise seen from outside
-    for (int axis = 0; axis < 3; ++axis)
+    // corner k has coordinate i at +h[i] when bit i of k is set
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 8; ++k)
     {
-        for (const Real sign : {-1.0, 1.0})
-        {
-            const int u = (axis + 1) % 3;
-            const int v = (axis + 2) % 3;
-            auto corner = [&](Real su, Real sv)
-            {
-                Vec3 p;
-                p[axis] = sign * h[axis];
-                p[u] = su * h[u];
-                p[v] = sv * h[v];
-                return p;
-            };
-            Vec3 a = corner(-1, -1), b = corner(1, -1), c = corner(1, 1), d = corner(-1, 1);
-            if (sign < 0)
-            {
-                std::swap(b, d);
-            }
-            addFlatTriangle(mesh, a, b, c, colour);
-            addFlatTriangle(mesh, a, c, d, colour);
-        }
+        corners.emplace_back((k & 1) ? box.halfExtents.x() : -box.halfExtents.x(),
+                             (k & 2) ? box.halfExtents.y() : -box.halfExtents.y(),
+                             (k & 4) ? box.halfExtents.z() : -box.halfExtents.z());
     }
-    return mesh;
+    // two triangles per face, counter-clockwise seen from outside: -x, +x, -y, +y, -z, +z
+    const std::vector<std::array<std::uint32_t, 3>> triangles = {{0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5},
+                                                                 {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                                                 {0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}};
+    return flatShaded(corners, triangles, colour);
 }
 
 /// 1, 2 or 5 times a power of ten, near `value`: tiles of a size people read off at a glance.
@@ -147,6 +133,17 @@ TriangleMesh planeTriangles(const Plane& plane, const PlanePatch& patch)
 }
 
 } // namespace
+
+TriangleMesh flatShaded(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                        Rgb colour)
+{
+    TriangleMesh mesh;
+    for (const auto& t : triangles)
+    {
+        addFlatTriangle(mesh, vertices.at(t[0]), vertices.at(t[1]), vertices.at(t[2]), colour);
+    }
+    return mesh;
+}
 
 Rgb bodyColour(std::size_t body)
 {

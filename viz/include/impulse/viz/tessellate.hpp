@@ -43,6 +43,11 @@ struct PlanePatch
     Real halfSize = 5.0;
 };
 
+/// A triangle list drawn with flat faces: each triangle gets its own vertices and its face normal
+/// (counter-clockwise seen from outside). Boxes are drawn this way, and so can any mesh shape be.
+TriangleMesh flatShaded(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                        Rgb colour);
+
 /// Tessellates a shape in its body frame: spheres in coloured octants (so that spin shows), boxes
 /// face by face, planes as a checkerboard square.
 TriangleMesh bodyTriangles(const Shape& shape, Rgb colour, const PlanePatch& patch = {});
