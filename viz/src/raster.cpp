@@ -349,7 +349,10 @@ Image renderImage(const std::vector<DrawnMesh>& meshes, const std::vector<Polyli
             const Real diffuse = std::max(0.0, n.dot(toLight)) * light;
             const Real skyLight = 0.5 + 0.5 * n.dot(sceneUp);
             const Vec3 halfway = (toLight + toEye).normalized();
-            const Real specular = 0.25 * std::pow(std::max(0.0, n.dot(halfway)), 48.0) * light;
+            // shininess 48 by squaring (x^48 = x^32 x^16): std::pow was a fifth of a frame's time
+            const Real x1 = std::max(0.0, n.dot(halfway));
+            const Real x2 = x1 * x1, x4 = x2 * x2, x8 = x4 * x4, x16 = x8 * x8;
+            const Real specular = 0.25 * x16 * x16 * x16 * light;
             Vec3 colour =
                 buffer.colour[i].cast<Real>() * (0.30 + 0.18 * skyLight + 0.62 * diffuse) + Vec3::Constant(specular);
             // far ground fades into the horizon, so the finite plane reads as an endless floor
