@@ -53,6 +53,8 @@ def browser(profile):
     for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
                  "--enable-unsafe-swiftshader", "--user-data-dir=" + profile,
+                 # containers often give /dev/shm only 64 MB, too little for Chromium's renderer
+                 "--disable-dev-shm-usage",
                  "--window-size=%d,%d" % (WIDTH, HEIGHT)):
         options.add_argument(flag)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
