@@ -9,7 +9,14 @@ packages=(
   nlohmann-json3-dev   # scene files
   libcli11-dev         # command line
   libassimp-dev        # mesh files (OBJ, STL)
+  libpng-dev           # PNG frames and pictures (impulse render), decoded again by the tests
+  gnuplot-nox          # impulse plot draws with gnuplot, headless (pngcairo)
+  libjs-three          # three.js and its OrbitControls, inlined into impulse view's page
+  ffmpeg               # impulse render joins the frames into an MP4; the tests decode it with ffprobe
   libgtest-dev         # tests
+  chromium             # the viewer test loads the page in headless Chromium
+  chromium-driver      # ... driven through WebDriver
+  python3-selenium     # ... by a Python script
   libbenchmark-dev     # benchmarks
   clang-format         # formatting check
   libmujoco-dev        # optional: MJCF models, impulse compare (impulse_mujoco, MuJoCo 2.2.2)

@@ -4,6 +4,7 @@
 #ifdef IMPULSE_HAVE_MUJOCO
 #include "mujoco_commands.hpp"
 #endif
+#include "see_commands.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -43,6 +44,8 @@ int main(int argc, char** argv)
                      "default none")
         ->check(CLI::NonNegativeNumber);
 
+    const impulse::app::SeeCommands see(app);
+
 #ifdef IMPULSE_HAVE_MUJOCO
     std::string exportScene;
     std::string exportOut;
@@ -74,6 +77,11 @@ int main(int argc, char** argv)
         const int code = app.exit(error);
         return code == 0 ? 0 : 2;
     }
+    if (const std::optional<int> code = see.runChosen())
+    {
+        return *code;
+    }
+
 #ifdef IMPULSE_HAVE_MUJOCO
     if (exportCommand->parsed())
     {

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+#include <impulse/io/trajectory_reader.hpp>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace impulse::io
+{
+namespace
+{
+
+constexpr const char* expectedHeader = "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
+constexpr std::size_t columnCount = 15;
+
+[[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& what)
+{
+    throw TrajectoryError(source + ": line " + std::to_string(line) + ": " + what);
+}
+
+/// Splits one row into exactly 15 finite numbers, or says why it cannot.
+std::array<double, columnCount> parseRow(const std::string& row, const std::string& source, std::size_t line)
+{
+    static const std::array<const char*, columnCount> names = {"t",  "body", "x",  "y",  "z",  "qw", "qx", "qy",
+                                                               "qz", "vx",   "vy", "vz", "wx", "wy", "wz"};
+    std::array<double, columnCount> values{};
+    std::size_t begin = 0;
+    for (std::size_t column = 0; column < columnCount; ++column)
+    {
+        const std::size_t comma = row.find(',', begin);
+        const bool last = column + 1 == columnCount;
+        if (!last && comma == std::string::npos)
+        {
+            fail(source, line, "expected 15 comma-separated numbers, got " + std::to_string(column + 1));
+        }
+        if (last && comma != std::string::npos)
+        {
+            fail(source, line, "expected 15 comma-separated numbers, got more");
+        }
+        const std::size_t end = last ? row.size() : comma;
+        const char* first = row.data() + begin;
+        const char* stop = row.data() + end;
+        double value = 0.0;
+        const auto [ptr, error] = std::from_chars(first, stop, value);
+        if (error != std::errc() || ptr != stop || !std::isfinite(value))
+        {
+            fail(source, line,
+                 std::string("column ") + names[column] + ": not a finite number: \"" + std::string(first, stop) +
+                     "\"");
+        }
+        values[column] = value;
+        begin = end + 1;
+    }
+    return values;
+}
+
+} // namespace
+
+Trajectory parseTrajectory(std::istream& in, const std::string& source)
+{
+    Trajectory trajectory;
+    std::string row;
+    std::size_t line = 0;
+    auto readLine = [&]() -> bool
+    {
+        if (!std::getline(in, row))
+        {
+            return false;
+        }
+        ++line;
+        if (!row.empty() && row.back() == '\r')
+        {
+            row.pop_back(); // tolerate files that went through a Windows editor
+        }
+        return true;
+    };
+
+    if (!readLine())
+    {
+        fail(source, 1, std::string("empty file; expected the header ") + expectedHeader);
+    }
+    if (row != expectedHeader)
+    {
+        fail(source, 1, std::string("header must be ") + expectedHeader + "; got " + row.substr(0, 200));
+    }
+
+    // Rows come in groups, one per sample: bodies 0, 1, ..., n-1 at the same time. The first group
+    // fixes n; every later group must repeat it.
+    bool countKnown = false;
+    std::size_t nextBody = 0;
+    while (readLine())
+    {
+        if (row.empty())
+        {
+            continue;
+        }
+        const auto v = parseRow(row, source, line);
+        const double body = v[1];
+        if (body != std::floor(body) || body < 0.0)
+        {
+            fail(source, line, "body must be a whole number >= 0, got " + std::to_string(body));
+        }
+        const auto index = static_cast<std::size_t>(body);
+        const double t = v[0];
+        if (index == 0 && nextBody != 0 && !countKnown)
+        {
+            trajectory.bodyCount = nextBody;
+            countKnown = true;
+        }
+        if (countKnown && nextBody == trajectory.bodyCount)
+        {
+            nextBody = 0;
+        }
+        if (index != nextBody)
+        {
+            fail(source, line,
+                 "expected body " + std::to_string(nextBody) + " (each sample lists bodies 0, 1, ... in order), got " +
+                     std::to_string(index));
+        }
+        if (index == 0)
+        {
+            if (!trajectory.times.empty() && t < trajectory.times.back())
+            {
+                fail(source, line, "time goes backwards");
+            }
+            trajectory.times.push_back(t);
+        }
+        else if (t != trajectory.times.back())
+        {
+            fail(source, line, "body " + std::to_string(index) + " has a different time from body 0 of its sample");
+        }
+        BodySample sample;
+        sample.position = Vec3(v[2], v[3], v[4]);
+        const Quat q(v[5], v[6], v[7], v[8]);
+        if (q.norm() < 0.5)
+        {
+            fail(source, line, "orientation is not a unit quaternion");
+        }
+        // kept bit for bit when already unit, as the writer leaves it; normalised when rounded by hand
+        sample.orientation = std::abs(q.norm() - 1.0) > 1e-9 ? q.normalized() : q;
+        sample.linearVelocity = Vec3(v[9], v[10], v[11]);
+        sample.angularVelocity = Vec3(v[12], v[13], v[14]);
+        trajectory.samples.push_back(sample);
+        ++nextBody;
+    }
+    if (trajectory.times.empty())
+    {
+        fail(source, line, "no samples after the header");
+    }
+    if (!countKnown)
+    {
+        trajectory.bodyCount = nextBody;
+    }
+    else if (nextBody != trajectory.bodyCount)
+    {
+        fail(source, line,
+             "the last sample has " + std::to_string(nextBody) + " bodies, the others " +
+                 std::to_string(trajectory.bodyCount));
+    }
+    return trajectory;
+}
+
+Trajectory readTrajectory(const std::filesystem::path& path)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+    {
+        throw TrajectoryError(path.string() + ": cannot open for reading");
+    }
+    return parseTrajectory(file, path.string());
+}
+
+} // namespace impulse::io

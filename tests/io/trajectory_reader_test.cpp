@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// The trajectory reader's contract: it reads back exactly what TrajectoryWriter writes, and refuses
+// anything else with io::TrajectoryError reading "<source>: line <n>: <what is wrong>".
+#include <impulse/impulse.hpp>
+#include <impulse/io/trajectory.hpp>
+#include <impulse/io/trajectory_reader.hpp>
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+namespace
+{
+
+using impulse::io::parseTrajectory;
+using impulse::io::TrajectoryError;
+
+const std::string kHeader = "t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+
+impulse::io::Trajectory parse(const std::string& text)
+{
+    std::istringstream in(text);
+    return parseTrajectory(in, "traj.csv");
+}
+
+/// The message of the error that parsing `text` raises, or "" if it parses.
+std::string refusal(const std::string& text)
+{
+    try
+    {
+        parse(text);
+    }
+    catch (const TrajectoryError& error)
+    {
+        return error.what();
+    }
+    return "";
+}
+
+TEST(TrajectoryReader, ReadsBackExactlyWhatTheWriterWrites)
+{
+    impulse::World world;
+    const auto material = world.createMaterial({.restitution = 0.5, .friction = 0.3});
+    std::vector<impulse::BodyId> bodies;
+    bodies.push_back(world.createBody({.shape = impulse::Sphere{0.1},
+                                       .material = material,
+                                       .mass = 1.0,
+                                       .position = {0.1, 0.2, 1.0 / 3.0},
+                                       .angularVelocity = {1.0, 2.0, 3.0}}));
+    bodies.push_back(world.createBody({.shape = impulse::Box{}, .material = material, .mass = 2.0}));
+    std::ostringstream out;
+    impulse::io::TrajectoryWriter writer(out);
+    writer.writeHeader();
+    std::vector<impulse::BodyState> written;
+    for (int sample = 0; sample < 3; ++sample)
+    {
+        writer.writeSample(world.time(), world, bodies);
+        written.push_back(world.state(bodies[0]));
+        world.step({.dt = 1e-3});
+    }
+    const impulse::io::Trajectory trajectory = parse(out.str());
+    ASSERT_EQ(trajectory.bodyCount, 2u);
+    ASSERT_EQ(trajectory.sampleCount(), 3u);
+    EXPECT_EQ(trajectory.times[2], 2e-3);
+    EXPECT_EQ(trajectory.at(0, 0).position, impulse::Vec3(0.1, 0.2, 1.0 / 3.0));
+    EXPECT_EQ(trajectory.at(2, 0).position, written[2].position);
+    EXPECT_EQ(trajectory.at(2, 0).linearVelocity, written[2].linearVelocity);
+    EXPECT_EQ(trajectory.at(2, 0).orientation.coeffs(), written[2].orientation.coeffs());
+    EXPECT_EQ(trajectory.at(0, 0).angularVelocity, written[0].angularVelocity);
+}
+
+TEST(TrajectoryReader, RefusesEachDepartureNamingTheFileAndLine)
+{
+    const std::string row0 = "0,0,0,0,1,1,0,0,0,0,0,0,0,0,0\n";
+    const std::string row1 = "0,1,0,0,1,1,0,0,0,0,0,0,0,0,0\n";
+    EXPECT_EQ(refusal(""),
+              "traj.csv: line 1: empty file; expected the header " + kHeader.substr(0, kHeader.size() - 1));
+    EXPECT_EQ(refusal("t,x,y,z\n" + row0),
+              "traj.csv: line 1: header must be t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz; got t,x,y,z");
+    EXPECT_EQ(refusal(kHeader), "traj.csv: line 1: no samples after the header");
+    EXPECT_EQ(refusal(kHeader + "0,0,0,0,1\n"), "traj.csv: line 2: expected 15 comma-separated numbers, got 5");
+    EXPECT_EQ(refusal(kHeader + "0,0,0,0,1,1,0,0,0,0,0,0,0,0,0,7\n"),
+              "traj.csv: line 2: expected 15 comma-separated numbers, got more");
+    EXPECT_EQ(refusal(kHeader + "0,0,0,0,nan,1,0,0,0,0,0,0,0,0,0\n"),
+              "traj.csv: line 2: column z: not a finite number: \"nan\"");
+    EXPECT_EQ(refusal(kHeader + "0,0,0,0,1 ,1,0,0,0,0,0,0,0,0,0\n"),
+              "traj.csv: line 2: column z: not a finite number: \"1 \"");
+    EXPECT_EQ(refusal(kHeader + row1), "traj.csv: line 2: expected body 0 (each sample lists bodies 0, 1, ... in "
+                                       "order), got 1");
+    EXPECT_EQ(refusal(kHeader + row0 + row1 + row0), "traj.csv: line 4: the last sample has 1 bodies, the others 2");
+    EXPECT_EQ(refusal(kHeader + "1,0,0,0,1,1,0,0,0,0,0,0,0,0,0\n" + row0), "traj.csv: line 3: time goes backwards");
+    EXPECT_EQ(refusal(kHeader + row0 + "0.5,1,0,0,1,1,0,0,0,0,0,0,0,0,0\n"),
+              "traj.csv: line 3: body 1 has a different time from body 0 of its sample");
+    EXPECT_EQ(refusal(kHeader + "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n"),
+              "traj.csv: line 2: orientation is not a unit quaternion");
+}
+
+TEST(TrajectoryReader, AcceptsWindowsLineEndsAndNormalisesOrientation)
+{
+    const auto trajectory = parse("t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\r\n0,0,0,0,1,2,0,0,0,0,0,0,0,0,0\r\n");
+    ASSERT_EQ(trajectory.sampleCount(), 1u);
+    EXPECT_EQ(trajectory.at(0, 0).orientation.w(), 1.0);
+}
+
+TEST(TrajectoryReader, AMissingFileIsNamed)
+{
+    try
+    {
+        impulse::io::readTrajectory("no/such/traj.csv");
+        FAIL() << "no error";
+    }
+    catch (const TrajectoryError& error)
+    {
+        EXPECT_STREQ(error.what(), "no/such/traj.csv: cannot open for reading");
+    }
+}
+
+} // namespace
