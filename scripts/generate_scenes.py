@@ -120,6 +120,17 @@ def random_unit_quaternion(rng):
                                     b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))]
 
 
+# middle of the bounding box of the meshes whose file origin is not at their middle
+FILE_BOX_CENTRES = {"l_block.obj": (0.06, 0.06, 0.03)}
+
+
+def rotate(q, v):
+    """Rotates v by the unit quaternion q = [w, x, y, z]."""
+    w, x, y, z = q
+    tx, ty, tz = 2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz, v[2] + w * tz + x * ty - y * tx)
+
+
 def nonconvex_pile(n):
     rng = random.Random(14)
     pieces = ["small_torus.obj", "l_block.obj", "star.obj", "dumbbell.obj", "gear.stl"]
@@ -140,8 +151,12 @@ def nonconvex_pile(n):
         position = [(column - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
                     (row - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
                     0.3 + spacing * layer]
-        bodies.append(mesh(f"piece{k}", pieces[k % len(pieces)], position, random_unit_quaternion(rng),
-                           density=1000.0))
+        piece = pieces[k % len(pieces)]
+        orientation = random_unit_quaternion(rng)
+        # the scene places a mesh's file frame: put the middle of each piece's box at the slot
+        offset = rotate(orientation, FILE_BOX_CENTRES.get(piece, (0.0, 0.0, 0.0)))
+        position = [round(p - o, 12) for p, o in zip(position, offset)]
+        bodies.append(mesh(f"piece{k}", piece, position, orientation, density=1000.0))
     write(f"nonconvex_pile_{n}", f"Reference scene 14: {n} nonconvex meshes (tori, L-blocks, stars, dumbbells, gears) "
           "dropped into a 2 m x 2 m box with random orientations; mu = 0.5, eps = 0.3. They must settle without "
           "interpenetrating.", bodies, 10.0, materials={"default": {"restitution": 0.3, "friction": 0.5}})

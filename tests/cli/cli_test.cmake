@@ -176,6 +176,8 @@ set(expect_negative_radius "^/bodies/1/shape/radius: .*positive")
 set(expect_missing_dt "^/dt: missing")
 set(expect_unknown_shape "^/bodies/1/shape/type: unknown shape \"cylinder\"")
 # 1e999 is JSON syntax but no double: the field pointer and "finite", or at least the token
+set(expect_mesh_not_closed "^/bodies/1/shape/file: .*open_box.obj: not closed: the edge from")
+set(expect_mesh_missing_file "^/bodies/1/shape/file: .*no_such_mesh.obj: no such file")
 set(expect_number_overflow "^(/bodies/1/shape/radius: .*finite|.*1e999)")
 
 file(GLOB bad_scenes "${DATA}/bad/*.json")

@@ -554,3 +554,97 @@ TEST(SceneLoader, DensityWhoseMassOverflowsIsRefusedWithItsPath)
 }
 
 } // namespace
+
+// ---- meshes ----------------------------------------------------------------------------------
+
+namespace mesh_scenes
+{
+
+/// A scene with one mesh body whose shape object is `shape`, read relative to the shipped scenes.
+impulse::io::Scene meshScene(const std::string& shape, const std::string& pose = "\"position\": [0, 0, 1]")
+{
+    const std::string text = R"({"dt": 0.001, "duration": 1.0,
+        "materials": {"m": {"restitution": 0.0, "friction": 0.5}},
+        "bodies": [{"shape": )" +
+                             shape + R"(, "material": "m", "density": 1000, )" + pose + "}]}";
+    return parseScene(text, "test.json", IMPULSE_SCENES_DIR);
+}
+
+std::string meshRefusal(const std::string& shape)
+{
+    try
+    {
+        meshScene(shape);
+    }
+    catch (const SceneError& error)
+    {
+        return error.what();
+    }
+    return "(accepted)";
+}
+
+TEST(SceneLoaderMesh, TheScenePlacesTheFileFrameAndTheBodyIsAtItsCentreOfMass)
+{
+    // the L-block's file origin is a corner; its centre of mass is (0.05, 0.05, 0.03) in the file
+    const auto scene = meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj"})",
+                                 R"("position": [1, 2, 3], "orientation": {"axis": [0, 0, 1], "angle_deg": 90})");
+    const impulse::BodyState state = scene.world.state(scene.dynamicBodies.at(0));
+    // rotated a quarter turn about z, (0.05, 0.05, 0.03) becomes (-0.05, 0.05, 0.03); float file
+    EXPECT_LT((state.position - impulse::Vec3(0.95, 2.05, 3.03)).norm(), 1e-8) << state.position.transpose();
+    EXPECT_NEAR(scene.world.mass(scene.dynamicBodies.at(0)), 1000.0 * 3 * 0.06 * 0.06 * 0.06, 1e-6);
+}
+
+TEST(SceneLoaderMesh, ScaleAndResolutionAreApplied)
+{
+    const auto once = meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj"})");
+    const auto twice = meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj", "scale": 2, "resolution": 40})");
+    const auto& mesh = std::get<impulse::Mesh>(twice.world.shape(twice.dynamicBodies.at(0)));
+    EXPECT_NEAR(twice.world.mass(twice.dynamicBodies.at(0)) / once.world.mass(once.dynamicBodies.at(0)), 8.0, 1e-9);
+    // 40 cells along the longest side of the body-frame box (the L's principal axes are its diagonals)
+    EXPECT_NEAR(mesh.geometry->cellSize(), (mesh.geometry->upper() - mesh.geometry->lower()).maxCoeff() / 40, 1e-15);
+    EXPECT_NEAR((mesh.geometry->upper() - mesh.geometry->lower()).maxCoeff(), 2.0 * 0.12 * std::sqrt(2.0), 1e-6);
+}
+
+TEST(SceneLoaderMesh, BodiesOfOneFileShareOnePreparedMesh)
+{
+    const std::string body = R"({"shape": {"type": "mesh", "file": "meshes/star.obj"}, "material": "m", "mass": 1})";
+    const std::string text = R"({"dt": 0.001, "duration": 1.0, "materials": {"m": {"restitution": 0, "friction": 0.5}},
+        "bodies": [)" + body +
+                             ", " + body + "]}";
+    const auto scene = parseScene(text, "test.json", IMPULSE_SCENES_DIR);
+    const auto& a = std::get<impulse::Mesh>(scene.world.shape(scene.dynamicBodies.at(0)));
+    const auto& b = std::get<impulse::Mesh>(scene.world.shape(scene.dynamicBodies.at(1)));
+    EXPECT_EQ(a.geometry.get(), b.geometry.get());
+}
+
+TEST(SceneLoaderMesh, StlIsReadAndWelded)
+{
+    const auto scene = meshScene(R"({"type": "mesh", "file": "meshes/gear.stl"})");
+    const auto& gear = std::get<impulse::Mesh>(scene.world.shape(scene.dynamicBodies.at(0)));
+    // 48 outline corners on each cap plus the two cap centres, once each after welding
+    EXPECT_EQ(gear.geometry->vertices().size(), 98u);
+}
+
+TEST(SceneLoaderMesh, BrokenMeshesAndFieldsAreRefusedNamingTheFieldAndTheProblem)
+{
+    const std::string prefix = "test.json: /bodies/0/shape/";
+    const std::string missing = meshRefusal(R"({"type": "mesh", "file": "meshes/nothing.obj"})");
+    EXPECT_EQ(missing.rfind(prefix + "file: ", 0), 0u) << missing;
+    EXPECT_TRUE(contains(missing, "nothing.obj: no such file")) << missing;
+
+    const std::string open = meshRefusal(R"({"type": "mesh", "file": "../tests/data/meshes/open_box.obj"})");
+    EXPECT_EQ(open.rfind(prefix + "file: ", 0), 0u) << open;
+    EXPECT_TRUE(contains(open, "open_box.obj: not closed")) << open;
+
+    const std::string notMesh = meshRefusal(R"({"type": "mesh", "file": "box_stack_10.json"})");
+    EXPECT_TRUE(contains(notMesh, "cannot read the mesh")) << notMesh;
+
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "scale": -1})"), "positive"));
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "resolution": 2})"), "4 to"));
+    EXPECT_TRUE(
+        contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "resolution": 5000})"), "at most 1024"));
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "radius": 1})"), "unknown field"));
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh"})"), "/file: missing"));
+}
+
+} // namespace mesh_scenes
