@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Regenerates the report's pictures in docs/figures/ from the reference scenes: for the elastic
-# ball drop (20 s), the spinning ball on the ground and the oblique two-ball collision, a plot
+# ball drop (20 s), the spinning ball on the ground, the oblique two-ball collision and the ring
+# falling over the peg (a torus mesh: nonconvex contact), a plot
 # (height, 3D path, speed and energy against time) and a rendered frame. Builds impulse first if
 # needed; needs gnuplot (scripts/install-deps.sh installs it).
 set -euo pipefail
@@ -18,6 +19,7 @@ figures=(
   "ball_drop_elastic 0.45 --trail"
   "spin_friction 3.0 --trail"
   "ball_ball_oblique 1.0 --trail"
+  "ring_on_peg 3.0 --trail"
 )
 for figure in "${figures[@]}"; do
   read -r name at extra <<< "$figure"

@@ -4,6 +4,7 @@
 // and the energies the plots show.
 #include <impulse/impulse.hpp>
 #include <impulse/io/scene.hpp>
+#include <impulse/mesh_shapes.hpp>
 #include <impulse/viz/raster.hpp>
 #include <impulse/viz/series.hpp>
 #include <impulse/viz/tessellate.hpp>
@@ -66,6 +67,25 @@ TEST(Tessellation, SphereLiesOnItsSurfaceAndNearlyEnclosesItsVolume)
     }
     const Real exact = 4.0 / 3.0 * std::numbers::pi * r * r * r;
     EXPECT_NEAR(enclosedVolume(mesh), exact, 0.02 * exact); // an inscribed polyhedron: a little less
+    expectNormalsAgreeWithWinding(mesh);
+}
+
+TEST(Tessellation, MeshIsDrawnAsItsOwnTrianglesEnclosingItsVolume)
+{
+    const auto torus = impulse::MeshGeometry::build(impulse::torusMesh(0.3, 0.05, 24, 12));
+    const TriangleMesh mesh = bodyTriangles(impulse::Mesh{torus}, bodyColour(2));
+    EXPECT_EQ(mesh.triangles.size(), torus->triangles().size());
+    EXPECT_NEAR(enclosedVolume(mesh), torus->volume(), 1e-12 * torus->volume());
+    expectNormalsAgreeWithWinding(mesh);
+}
+
+TEST(Tessellation, CapsuleIsACylinderWithHemisphericalEnds)
+{
+    const impulse::Capsule capsule{0.1, 0.3};
+    const TriangleMesh mesh = bodyTriangles(capsule, bodyColour(3));
+    const Real exact = std::numbers::pi * 0.01 * 0.6 + 4.0 / 3.0 * std::numbers::pi * 0.001;
+    EXPECT_NEAR(enclosedVolume(mesh), exact, 0.03 * exact); // inscribed: a little less
+    EXPECT_LT(enclosedVolume(mesh), exact);
     expectNormalsAgreeWithWinding(mesh);
 }
 
