@@ -201,13 +201,17 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
 
 constexpr std::size_t kMaxPatchPoints = 8;
 
-// Keeps at most kMaxPatchPoints points of a large patch (a mesh lying on a face touches at many
-// vertices): the deepest, then each time the point farthest from those kept. The kept points span
-// the contact region, and a rigid motion that does not approach at the corners of a region does not
-// approach inside it.
-void reducePatch(std::vector<PatchPoint>& patch)
+// Keeps at most kMaxPatchPoints points of a large patch of a mesh (lying on a face, a mesh touches
+// at many vertices): the deepest, then each time the point farthest from those kept. The kept points
+// span the contact region, and a rigid motion that does not approach at the corners of a region does
+// not approach inside it. Patches of analytic shapes are left whole: a pair of them gives at most
+// eight points, and a body on several such supports falls back to its pairs as before.
+void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
 {
-    if (patch.size() <= kMaxPatchPoints)
+    const auto isMesh = [](const RigidBody& b) { return std::holds_alternative<Mesh>(b.shape); };
+    if (patch.size() <= kMaxPatchPoints ||
+        !(isMesh(body) ||
+          std::any_of(patch.begin(), patch.end(), [&](const PatchPoint& p) { return isMesh(*p.other); })))
     {
         return;
     }
@@ -331,7 +335,7 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         {
             break;
         }
-        reducePatch(patch);
+        reducePatch(a, patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
             (applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings) ||
              (!planar(patch) &&
@@ -380,7 +384,7 @@ int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Rea
                           scratch);
             collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
         }
-        reducePatch(patch);
+        reducePatch(body, patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
             (applyPatchImpulse(body, patch, eps, settings) || applyProjectedPatchImpulse(body, patch, eps, settings)))
         {
