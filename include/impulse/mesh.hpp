@@ -120,7 +120,8 @@ class MeshGeometry
   private:
     MeshGeometry();
     MeshDistance distanceFrom(const Vec3& pointBody, const SurfacePoint& closest) const;
-    Real searchRadius(const Vec3& pointBody) const;
+    /// How far the closest triangle can be from a point whose grid value is gridPhi.
+    Real searchRadius(Real gridPhi) const;
 
     std::vector<Vec3> m_vertices;
     std::vector<std::array<std::uint32_t, 3>> m_triangles;

@@ -336,10 +336,10 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
             break;
         }
         reducePatch(a, patch);
+        const Real patchEps = patchRestitution(a, eps, patch, settings);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
-            (applyPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings) ||
-             (!planar(patch) &&
-              applyProjectedPatchImpulse(a, patch, patchRestitution(a, eps, patch, settings), settings))))
+            (applyPatchImpulse(a, patch, patchEps, settings) ||
+             (!planar(patch) && applyProjectedPatchImpulse(a, patch, patchEps, settings))))
         {
             // every approaching point has its target: repeating would only compound a negative
             // restitution of the ramp, or chase round-off

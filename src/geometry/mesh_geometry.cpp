@@ -394,7 +394,7 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
     {
         return coarse; // certainly not touching, or deep inside where the grid's normal serves
     }
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(pointBody));
+    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse.phi));
     return closest.found ? distanceFrom(pointBody, closest) : coarse;
 }
 
@@ -405,14 +405,14 @@ Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed) const
     {
         return coarse - gridError();
     }
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(pointBody));
+    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse));
     return closest.found ? TriangleBvh::signedDistance(pointBody, closest) : coarse - gridError();
 }
 
-Real MeshGeometry::searchRadius(const Vec3& pointBody) const
+Real MeshGeometry::searchRadius(Real gridPhi) const
 {
     // the grid is within gridError() of the truth: a search this wide finds the closest triangle
-    return std::abs(m_grid->sample(pointBody).phi) + gridError() + m_grid->cellSize();
+    return std::abs(gridPhi) + gridError() + m_grid->cellSize();
 }
 
 Real MeshGeometry::gridError() const
