@@ -6,6 +6,7 @@
 // passage becomes a sample point as well.
 #include "collision/mesh_contacts.hpp"
 
+#include "geometry/box_queries.hpp"
 #include "geometry/signed_distance.hpp"
 #include "geometry/triangle_bvh.hpp"
 
@@ -20,11 +21,6 @@ namespace
 {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
-Real distanceToBox(const Vec3& p, const Vec3& lower, const Vec3& upper)
-{
-    return (lower - p).cwiseMax(p - upper).cwiseMax(Vec3::Zero()).norm();
-}
 
 // The other body of a pair, seen from the sample points: its signed distance in its own frame,
 // and where a segment passes through it.
@@ -55,72 +51,56 @@ struct MeshTarget final : Target
     }
 };
 
-struct BoxTarget final : Target
+// A solid with an analytic signed distance: exact everywhere, so phi is its own lower bound.
+struct AnalyticTarget : Target
+{
+    using Target::Target;
+    virtual DistanceSample analytic(const Vec3& local) const = 0;
+    MeshDistance distance(const Vec3& local, Real) const final
+    {
+        const DistanceSample sample = analytic(local);
+        return {sample.phi, sample.gradient, true};
+    }
+    Real lowerBound(const Vec3& local, Real) const final { return analytic(local).phi; }
+};
+
+struct BoxTarget final : AnalyticTarget
 {
     Vec3 halfExtents;
     BoxTarget(const Box& box, const Pose& p)
-        : Target(p, -box.halfExtents, box.halfExtents), halfExtents(box.halfExtents)
+        : AnalyticTarget(p, -box.halfExtents, box.halfExtents), halfExtents(box.halfExtents)
     {
     }
-    MeshDistance distance(const Vec3& local, Real) const override
-    {
-        const DistanceSample sample = boxDistance(halfExtents, local);
-        return {sample.phi, sample.gradient, true};
-    }
-    Real lowerBound(const Vec3& local, Real) const override { return boxDistance(halfExtents, local).phi; }
+    DistanceSample analytic(const Vec3& local) const override { return boxDistance(halfExtents, local); }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
-        // slab test: the segment's passage through the box, if both ends are outside
+        // the segment's passage through the box, if both ends are outside
         enterLeave.clear();
-        const Vec3 d = b - a;
         Real enter = 0.0;
-        Real leave = 1.0;
-        for (int axis = 0; axis < 3; ++axis)
-        {
-            if (d[axis] == 0.0)
-            {
-                if (std::abs(a[axis]) >= halfExtents[axis])
-                {
-                    return;
-                }
-                continue;
-            }
-            Real t0 = (-halfExtents[axis] - a[axis]) / d[axis];
-            Real t1 = (halfExtents[axis] - a[axis]) / d[axis];
-            if (t0 > t1)
-            {
-                std::swap(t0, t1);
-            }
-            enter = std::max(enter, t0);
-            leave = std::min(leave, t1);
-        }
-        if (enter > 0.0 && leave < 1.0 && enter < leave)
+        Real leave = 0.0;
+        if (clipSegmentToBox(a, b - a, -halfExtents, halfExtents, enter, leave) && enter > 0.0 && leave < 1.0 &&
+            enter < leave)
         {
             enterLeave = {enter, leave};
         }
     }
 };
 
-struct CapsuleTarget final : Target
+struct CapsuleTarget final : AnalyticTarget
 {
     Capsule capsule;
     CapsuleTarget(const Capsule& c, const Pose& p)
-        : Target(p, -Vec3(c.radius, c.radius, c.halfLength + c.radius),
-                 Vec3(c.radius, c.radius, c.halfLength + c.radius)),
+        : AnalyticTarget(p, -Vec3(c.radius, c.radius, c.halfLength + c.radius),
+                         Vec3(c.radius, c.radius, c.halfLength + c.radius)),
           capsule(c)
     {
     }
-    MeshDistance distance(const Vec3& local, Real) const override
-    {
-        const DistanceSample sample = capsuleDistance(capsule, local);
-        return {sample.phi, sample.gradient, true};
-    }
-    Real lowerBound(const Vec3& local, Real) const override { return capsuleDistance(capsule, local).phi; }
+    DistanceSample analytic(const Vec3& local) const override { return capsuleDistance(capsule, local); }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
         // phi along a line is convex: find its least value, then the two roots around it
         enterLeave.clear();
-        const auto phi = [&](Real t) { return capsuleDistance(capsule, a + t * (b - a)).phi; };
+        const auto phi = [&](Real t) { return analytic(a + t * (b - a)).phi; };
         if (phi(0.0) <= 0.0 || phi(1.0) <= 0.0)
         {
             return; // an end inside is a sample point already
@@ -193,7 +173,7 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const 
     for (std::size_t v = 0; v < vertices.size(); ++v)
     {
         const Vec3 local = rotation * vertices[v] + shift;
-        const Real outside = distanceToBox(local, target.lower, target.upper);
+        const Real outside = std::sqrt(squaredDistanceToBox(local, target.lower, target.upper));
         if (outside > 0.0 && outside >= threshold)
         {
             // phi >= the distance to the target's bounding box
@@ -269,10 +249,9 @@ constexpr std::array<std::array<std::uint32_t, 2>, 12> kBoxEdges = {{
 std::vector<Vec3> boxCornersLocal(const Box& box)
 {
     std::vector<Vec3> corners(8);
-    for (int i = 0; i < 8; ++i)
+    for (std::size_t i = 0; i < 8; ++i)
     {
-        const Vec3 signs((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
-        corners[static_cast<std::size_t>(i)] = signs.cwiseProduct(box.halfExtents);
+        corners[i] = boxCorner(box.halfExtents, i);
     }
     return corners;
 }

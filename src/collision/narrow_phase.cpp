@@ -16,6 +16,7 @@
 #include "collision/box_box.hpp"
 #include "collision/capsule_contacts.hpp"
 #include "collision/mesh_contacts.hpp"
+#include "geometry/box_queries.hpp"
 #include "geometry/signed_distance.hpp"
 
 #include <array>
@@ -41,10 +42,9 @@ WorldPlane toWorld(const Plane& plane, const Pose& pose)
 std::array<Vec3, 8> boxCorners(const Box& box, const Pose& pose)
 {
     std::array<Vec3, 8> corners;
-    for (int i = 0; i < 8; ++i)
+    for (std::size_t i = 0; i < 8; ++i)
     {
-        const Vec3 signs((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
-        corners[static_cast<std::size_t>(i)] = pose.toWorld(signs.cwiseProduct(box.halfExtents));
+        corners[i] = pose.toWorld(boxCorner(box.halfExtents, i));
     }
     return corners;
 }

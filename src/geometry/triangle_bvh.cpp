@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "geometry/triangle_bvh.hpp"
 
+#include "geometry/box_queries.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,41 +16,12 @@ namespace
 
 constexpr std::uint32_t kLeafSize = 4;
 
-Real squaredDistanceToBox(const Vec3& p, const Vec3& lower, const Vec3& upper)
-{
-    const Vec3 outside = (lower - p).cwiseMax(p - upper).cwiseMax(Vec3::Zero());
-    return outside.squaredNorm();
-}
-
-// Does the segment a + t d, t in [0, 1], meet the box? (slab test)
+// Does the segment a + t d, t in [0, 1], meet the box?
 bool segmentMeetsBox(const Vec3& a, const Vec3& d, const Vec3& lower, const Vec3& upper)
 {
     Real enter = 0.0;
-    Real leave = 1.0;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-        if (std::abs(d[axis]) < std::numeric_limits<Real>::min())
-        {
-            if (a[axis] < lower[axis] || a[axis] > upper[axis])
-            {
-                return false;
-            }
-            continue;
-        }
-        Real t0 = (lower[axis] - a[axis]) / d[axis];
-        Real t1 = (upper[axis] - a[axis]) / d[axis];
-        if (t0 > t1)
-        {
-            std::swap(t0, t1);
-        }
-        enter = std::max(enter, t0);
-        leave = std::min(leave, t1);
-        if (enter > leave)
-        {
-            return false;
-        }
-    }
-    return true;
+    Real leave = 0.0;
+    return clipSegmentToBox(a, d, lower, upper, enter, leave);
 }
 
 Real cornerAngle(const Vec3& at, const Vec3& next, const Vec3& previous)
@@ -287,88 +260,57 @@ void TriangleBvh::trianglesNear(const Vec3& p, Real radius, std::vector<std::uin
 {
     out.clear();
     const Real squaredRadius = radius * radius;
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0)
-    {
-        const Node& node = m_nodes[stack[--top]];
-        if (squaredDistanceToBox(p, node.lower, node.upper) >= squaredRadius)
+    forEachTriangleIn(
+        [&](const Vec3& lower, const Vec3& upper) { return squaredDistanceToBox(p, lower, upper) < squaredRadius; },
+        [&](std::uint32_t t)
         {
-            continue;
-        }
-        if (node.count == 0)
-        {
-            stack[top++] = node.right;
-            stack[top++] = node.left;
-            continue;
-        }
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-        {
-            const auto& tri = m_triangles[m_order[i]];
+            const auto& tri = m_triangles[t];
             const Vec3 closest =
                 closestPointOnTriangle(p, m_vertices[tri[0]], m_vertices[tri[1]], m_vertices[tri[2]]).point;
             if ((p - closest).squaredNorm() < squaredRadius)
             {
-                out.push_back(m_order[i]);
+                out.push_back(t);
             }
-        }
-    }
+        });
 }
 
 void TriangleBvh::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<SegmentCrossing>& out) const
 {
     out.clear();
     const Vec3 direction = b - a;
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0)
-    {
-        const Node& node = m_nodes[stack[--top]];
-        if (!segmentMeetsBox(a, direction, node.lower, node.upper))
-        {
-            continue;
-        }
-        if (node.count == 0)
-        {
-            stack[top++] = node.right;
-            stack[top++] = node.left;
-            continue;
-        }
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-        {
-            // Moller-Trumbore: solve a + t d = v0 + u e1 + v e2 by Cramer's rule
-            const auto& tri = m_triangles[m_order[i]];
-            const Vec3& v0 = m_vertices[tri[0]];
-            const Vec3 e1 = m_vertices[tri[1]] - v0;
-            const Vec3 e2 = m_vertices[tri[2]] - v0;
-            const Vec3 pvec = direction.cross(e2);
-            const Real det = e1.dot(pvec); // = -direction . (e1 x e2): positive when entering
-            if (det == 0.0)
-            {
-                continue; // parallel to the plane of the triangle
-            }
-            const Real inverse = 1.0 / det;
-            const Vec3 tvec = a - v0;
-            const Real u = tvec.dot(pvec) * inverse;
-            if (u < 0.0 || u > 1.0)
-            {
-                continue;
-            }
-            const Vec3 qvec = tvec.cross(e1);
-            const Real v = direction.dot(qvec) * inverse;
-            if (v < 0.0 || u + v > 1.0)
-            {
-                continue;
-            }
-            const Real t = e2.dot(qvec) * inverse;
-            if (t >= 0.0 && t <= 1.0)
-            {
-                out.push_back({t, det > 0.0});
-            }
-        }
-    }
+    forEachTriangleIn([&](const Vec3& lower, const Vec3& upper) { return segmentMeetsBox(a, direction, lower, upper); },
+                      [&](std::uint32_t t)
+                      {
+                          // Moller-Trumbore: solve a + t d = v0 + u e1 + v e2 by Cramer's rule
+                          const auto& tri = m_triangles[t];
+                          const Vec3& v0 = m_vertices[tri[0]];
+                          const Vec3 e1 = m_vertices[tri[1]] - v0;
+                          const Vec3 e2 = m_vertices[tri[2]] - v0;
+                          const Vec3 pvec = direction.cross(e2);
+                          const Real det = e1.dot(pvec); // = -direction . (e1 x e2): positive when entering
+                          if (det == 0.0)
+                          {
+                              return; // parallel to the plane of the triangle
+                          }
+                          const Real inverse = 1.0 / det;
+                          const Vec3 tvec = a - v0;
+                          const Real u = tvec.dot(pvec) * inverse;
+                          if (u < 0.0 || u > 1.0)
+                          {
+                              return;
+                          }
+                          const Vec3 qvec = tvec.cross(e1);
+                          const Real v = direction.dot(qvec) * inverse;
+                          if (v < 0.0 || u + v > 1.0)
+                          {
+                              return;
+                          }
+                          const Real along = e2.dot(qvec) * inverse;
+                          if (along >= 0.0 && along <= 1.0)
+                          {
+                              out.push_back({along, det > 0.0});
+                          }
+                      });
     std::sort(out.begin(), out.end(),
               [](const SegmentCrossing& x, const SegmentCrossing& y)
               { return x.t < y.t || (x.t == y.t && x.entering && !y.entering); });

@@ -87,6 +87,33 @@ class TriangleBvh
         std::uint32_t count = 0; ///< leaf: number of triangles; 0 for an inner node
     };
 
+    /// Depth first, left before right: visit(t) for each triangle of every leaf reached through
+    /// boxes that enters(lower, upper) accepts.
+    template <class Enters, class Visit> void forEachTriangleIn(Enters enters, Visit visit) const
+    {
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0)
+        {
+            const Node& node = m_nodes[stack[--top]];
+            if (!enters(node.lower, node.upper))
+            {
+                continue;
+            }
+            if (node.count == 0)
+            {
+                stack[top++] = node.right;
+                stack[top++] = node.left;
+                continue;
+            }
+            for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+            {
+                visit(m_order[i]);
+            }
+        }
+    }
+
     std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids);
     Vec3 pseudonormal(std::uint32_t triangle, TriangleFeature feature) const;
 
