@@ -5,6 +5,7 @@
 
 #include "see_inputs.hpp"
 
+#include <impulse/io/markup.hpp>
 #include <impulse/viz/raster.hpp>
 #include <impulse/viz/series.hpp>
 #include <impulse/viz/tessellate.hpp>
@@ -195,32 +196,6 @@ std::string pageData(const LoadedRun& run)
     return json.text();
 }
 
-std::string escapeHtml(const std::string& text)
-{
-    std::string out;
-    for (const char c : text)
-    {
-        switch (c)
-        {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
-}
-
 std::optional<std::string> readText(const std::string& path)
 {
     std::ifstream file(path, std::ios::binary);
@@ -294,7 +269,7 @@ int writeViewer(const ViewOptions& options)
             return 1;
         }
     }
-    const std::string page = fillTemplate(assets::viewerHtml, {{"TITLE", escapeHtml(run.title)},
+    const std::string page = fillTemplate(assets::viewerHtml, {{"TITLE", io::escapeMarkup(run.title)},
                                                                {"DATA", pageData(run)},
                                                                {"THREE", *three},
                                                                {"ORBIT", *orbit},

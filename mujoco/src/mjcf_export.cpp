@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include <impulse/io/markup.hpp>
 #include <impulse/mujoco/mjcf_export.hpp>
 #include <impulse/mujoco/mujoco.hpp>
 
@@ -55,33 +56,6 @@ std::string uniqueName(const std::string& wanted, std::size_t index, std::set<st
     }
     used.insert(name);
     return name;
-}
-
-// Text for an XML attribute value in double quotes.
-std::string escaped(const std::string& text)
-{
-    std::string out;
-    for (const char c : text)
-    {
-        switch (c)
-        {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
 }
 
 // Contact attributes of a geom or pair for restitution eps and friction mu.
@@ -178,7 +152,7 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
                 const std::string assetName =
                     uniqueName("mesh_" + std::filesystem::path(file).stem().string(), meshAssets.size(), used);
                 asset = meshAssets.emplace(key, assetName).first;
-                assets << "    <mesh name=\"" << assetName << "\" file=\"" << escaped(file) << "\" scale=\""
+                assets << "    <mesh name=\"" << assetName << "\" file=\"" << io::escapeMarkup(file) << "\" scale=\""
                        << vec(source->scale) << "\"/>\n";
                 if (source->resolution != 0)
                 {
