@@ -127,11 +127,6 @@ def voxels(cells, size):
     return vertices, tris
 
 
-def centred(mesh, shift):
-    vertices, tris = mesh
-    return [tuple(v[i] - shift[i] for i in range(3)) for v in vertices], tris
-
-
 def main():
     MESHES.mkdir(parents=True, exist_ok=True)
     write_obj("ring", "torus, centre-line radius 0.3, tube radius 0.05 (hole radius 0.25), about z",
