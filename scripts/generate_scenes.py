@@ -162,6 +162,47 @@ def nonconvex_pile(n):
           "interpenetrating.", bodies, 10.0, materials={"default": {"restitution": 0.3, "friction": 0.5}})
 
 
+def read_initial_states(name):
+    """Rows of scenes/initial-states/NAME.csv (the t = 0 rows of the trajectory format), by body."""
+    rows = (SCENES / "initial-states" / f"{name}.csv").read_text().splitlines()
+    header = rows[0].split(",")
+    states = [dict(zip(header, (float(x) for x in row.split(",")))) for row in rows[1:] if row]
+    return sorted(states, key=lambda state: state["body"])
+
+
+def pile(kind, n):
+    """Reference scenes 11 and 12: a ground plane and four static walls 0.2 thick, inner faces at
+    x, y = +-2, from z = 0 to 1 m above the top layer; the bodies start at the shipped states."""
+    states = read_initial_states(f"{kind}_pile_{n}")
+    height = max(state["z"] for state in states) + 1.0
+    bodies = [GROUND]
+    for name, half, centre in (("wall_x_minus", [0.1, 2.2, height / 2], [-2.1, 0, height / 2]),
+                               ("wall_x_plus", [0.1, 2.2, height / 2], [2.1, 0, height / 2]),
+                               ("wall_y_minus", [2.0, 0.1, height / 2], [0, -2.1, height / 2]),
+                               ("wall_y_plus", [2.0, 0.1, height / 2], [0, 2.1, height / 2])):
+        bodies.append(box(name, half, centre, static=True))
+    for state in states:
+        k = int(state["body"])
+        position = [state["x"], state["y"], state["z"]]
+        if kind == "sphere":
+            body = {"name": f"ball{k}", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1.0,
+                    "position": position, "material": "default"}
+        else:
+            body = box(f"cube{k}", [0.1] * 3, position, mass=1.0)
+            body["orientation"] = [state["qw"], state["qx"], state["qy"], state["qz"]]
+        if any(state[v] != 0.0 for v in ("vx", "vy", "vz")):
+            body["velocity"] = [state["vx"], state["vy"], state["vz"]]
+        if any(state[w] != 0.0 for w in ("wx", "wy", "wz")):
+            body["angular_velocity"] = [state["wx"], state["wy"], state["wz"]]
+        bodies.append(body)
+    number = 11 if kind == "sphere" else 12
+    shape = "spheres of radius 0.1" if kind == "sphere" else "cubes of side 0.2"
+    write(f"{kind}_pile_{n}", f"Reference scene {number}: {n} {shape}, m = 1, start at rest at the positions of "
+          f"initial-states/{kind}_pile_{n}.csv and fall into a 4 m x 4 m box; mu = 0.5, eps = 0.3. None may escape "
+          "the box or end inside another.", bodies, 5.0,
+          materials={"default": {"restitution": 0.3, "friction": 0.5}})
+
+
 if __name__ == "__main__":
     box_stack(10)
     box_stack(50)
@@ -173,3 +214,6 @@ if __name__ == "__main__":
     tori_stack()
     nonconvex_pile(200)
     nonconvex_pile(1000)
+    for pile_kind in ("sphere", "box"):
+        for pile_size in (1000, 10000):
+            pile(pile_kind, pile_size)

@@ -50,6 +50,9 @@ struct StepOptions
     /// contact graph with restitution 0, every lower level frozen, so stacks stand with few
     /// iterations. Costs exact momentum conservation within that sweep.
     bool shockPropagation = true;
+    /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
+    /// hardware thread. Trajectories are bit-identical whatever the number.
+    int threads = 1;
 };
 
 /// What the last step did.
@@ -61,6 +64,9 @@ struct StepStats
     int collisionSweeps = 0;   ///< collision sweeps actually run (stops early when one applies none)
     int shockImpulses = 0;     ///< impulses applied by shock propagation
     int contactLevels = 0;     ///< levels of the contact graph
+    int contactPairs = 0;      ///< candidate pairs touching (within the contact thickness) at the contact graph
+    int islands = 0;           ///< groups of dynamic bodies connected by candidate pairs, solved independently
+    int threads = 1;           ///< worker threads the step used
 };
 
 class WorldImpl;
