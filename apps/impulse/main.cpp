@@ -43,6 +43,10 @@ int main(int argc, char** argv)
                      "Resolve collisions approaching slower than this speed (m/s) with restitution 0; "
                      "default none")
         ->check(CLI::NonNegativeNumber);
+    runCommand
+        ->add_option("--threads", run.threads,
+                     "Worker threads (0: one per hardware thread); the trajectory is the same at any count")
+        ->check(CLI::NonNegativeNumber);
 
     const impulse::app::SeeCommands see(app);
 

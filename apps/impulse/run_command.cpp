@@ -93,6 +93,7 @@ int runScene(const RunOptions& options)
     {
         scene.options.shockPropagation = *options.shockPropagation == "on";
     }
+    scene.options.threads = options.threads;
     if (options.restitutionThreshold)
     {
         scene.options.restitutionThreshold = *options.restitutionThreshold;

@@ -18,6 +18,7 @@ struct RunOptions
     std::optional<std::string> scheme;           ///< "guendelman" or "traditional"
     std::optional<double> restitutionThreshold;  ///< m/s
     std::optional<std::string> shockPropagation; ///< "on" or "off"
+    int threads = 1;                             ///< 0: one per hardware thread
 };
 
 /// Runs a scene and prints a summary. Returns the process exit code: 0 on success, 2 for a scene

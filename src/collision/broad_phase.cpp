@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "collision/broad_phase.hpp"
 
+#include "support/parallel.hpp"
+
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace impulse
 {
@@ -31,54 +35,80 @@ Aabb shapeBounds(const Shape& shape, const Pose& pose)
     return {pose.position - extent, pose.position + extent};
 }
 
-void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, std::vector<BodyPair>& pairs)
+namespace
+{
+
+bool overlap(const Aabb& l, const Aabb& r)
+{
+    return (l.lower.array() <= r.upper.array()).all() && (r.lower.array() <= l.upper.array()).all();
+}
+
+// Integer grid coordinate of x; non-finite or far values clamp, which only costs comparisons.
+std::int64_t cellCoordinate(Real x, Real origin, Real inverseCell)
+{
+    constexpr Real kFar = 1e15;
+    const Real c = (x - origin) * inverseCell;
+    return std::isfinite(c) ? static_cast<std::int64_t>(std::floor(std::clamp(c, -kFar, kFar))) : 0;
+}
+
+std::uint64_t mixCell(std::int64_t x, std::int64_t y, std::int64_t z)
+{
+    // three large odd multipliers and a final avalanche (splitmix64's)
+    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
+                      static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4FULL ^
+                      static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ULL;
+    h ^= h >> 31;
+    h *= 0xBF58476D1CE4E5B9ULL;
+    h ^= h >> 27;
+    return h;
+}
+
+} // namespace
+
+void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads,
+                           std::vector<BodyPair>& pairs)
 {
     pairs.clear();
     m_bounds.resize(bodies.size());
-    m_order.clear();
+    parallelForEach(threads, bodies.size(),
+                    [&](std::size_t i)
+                    {
+                        const RigidBody& body = bodies[i];
+                        if (std::holds_alternative<Plane>(body.shape))
+                        {
+                            return;
+                        }
+                        const Aabb now = shapeBounds(body.shape, body.pose());
+                        const Aabb next = shapeBounds(body.shape, body.predicted);
+                        const Real grow = body.dynamic ? margin : 0.0;
+                        m_bounds[i] = {now.lower.cwiseMin(next.lower).array() - grow,
+                                       now.upper.cwiseMax(next.upper).array() + grow};
+                    });
+    m_dynamic.clear();
+    m_static.clear();
     m_planes.clear();
     for (std::uint32_t i = 0; i < bodies.size(); ++i)
     {
-        const RigidBody& body = bodies[i];
-        if (std::holds_alternative<Plane>(body.shape))
+        if (std::holds_alternative<Plane>(bodies[i].shape))
         {
             m_planes.push_back(i);
-            continue;
         }
-        const Aabb now = shapeBounds(body.shape, body.pose());
-        const Aabb next = shapeBounds(body.shape, body.predicted);
-        const Real grow = body.dynamic ? margin : 0.0;
-        m_bounds[i] = {now.lower.cwiseMin(next.lower).array() - grow, now.upper.cwiseMax(next.upper).array() + grow};
-        m_order.push_back(i);
+        else
+        {
+            (bodies[i].dynamic ? m_dynamic : m_static).push_back(i);
+        }
     }
 
-    // sweep along x; ties broken by index so the result never depends on sort stability
-    std::sort(m_order.begin(), m_order.end(),
-              [&](std::uint32_t l, std::uint32_t r)
-              {
-                  const Real lx = m_bounds[l].lower.x();
-                  const Real rx = m_bounds[r].lower.x();
-                  return lx < rx || (lx == rx && l < r);
-              });
-    for (std::size_t k = 0; k < m_order.size(); ++k)
+    pairDynamicBodies(pairs);
+
+    // static boxes: against every dynamic body
+    for (const std::uint32_t s : m_static)
     {
-        const std::uint32_t i = m_order[k];
-        const Aabb& bi = m_bounds[i];
-        for (std::size_t l = k + 1; l < m_order.size(); ++l)
+        for (const std::uint32_t d : m_dynamic)
         {
-            const std::uint32_t j = m_order[l];
-            const Aabb& bj = m_bounds[j];
-            if (bj.lower.x() > bi.upper.x())
+            if (overlap(m_bounds[s], m_bounds[d]))
             {
-                break;
-            }
-            if (!bodies[i].dynamic && !bodies[j].dynamic)
-            {
-                continue;
-            }
-            if ((bi.lower.array() <= bj.upper.array()).all() && (bj.lower.array() <= bi.upper.array()).all())
-            {
-                pairs.push_back({std::min(i, j), std::max(i, j)});
+                pairs.push_back({std::min(s, d), std::max(s, d)});
             }
         }
     }
@@ -90,13 +120,9 @@ void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, st
         const Pose planePose = bodies[p].pose();
         const Vec3 normal = planePose.rotation * plane.normal;
         const Real offset = plane.offset + normal.dot(planePose.position);
-        for (std::uint32_t i = 0; i < bodies.size(); ++i)
+        for (const std::uint32_t i : m_dynamic)
         {
             const RigidBody& body = bodies[i];
-            if (!body.dynamic)
-            {
-                continue;
-            }
             const Real nearest = std::min(normal.dot(body.position), normal.dot(body.predicted.position)) - offset;
             if (nearest - body.boundingRadius <= margin)
             {
@@ -107,6 +133,96 @@ void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, st
 
     std::sort(pairs.begin(), pairs.end(),
               [](const BodyPair& l, const BodyPair& r) { return l.a < r.a || (l.a == r.a && l.b < r.b); });
+}
+
+void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
+{
+    if (m_dynamic.size() < 2)
+    {
+        return;
+    }
+    Real cell = 0.0;
+    Vec3 origin = m_bounds[m_dynamic[0]].lower;
+    for (const std::uint32_t d : m_dynamic)
+    {
+        cell = std::max(cell, (m_bounds[d].upper - m_bounds[d].lower).maxCoeff());
+        origin = origin.cwiseMin(m_bounds[d].lower);
+    }
+    if (!(cell > 0.0) || !std::isfinite(cell))
+    {
+        cell = 1.0;
+    }
+    const Real inverse = 1.0 / cell;
+    const auto cellOf = [&](const Vec3& p)
+    {
+        return std::array<std::int64_t, 3>{cellCoordinate(p.x(), origin.x(), inverse),
+                                           cellCoordinate(p.y(), origin.y(), inverse),
+                                           cellCoordinate(p.z(), origin.z(), inverse)};
+    };
+
+    // every cell a box touches (at most two per axis), hashed into buckets
+    std::size_t buckets = 1;
+    while (buckets < 4 * m_dynamic.size())
+    {
+        buckets *= 2;
+    }
+    m_entries.clear();
+    for (const std::uint32_t d : m_dynamic)
+    {
+        const auto lo = cellOf(m_bounds[d].lower);
+        const auto hi = cellOf(m_bounds[d].upper);
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        {
+            for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+            {
+                for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+                {
+                    m_entries.push_back({mixCell(x, y, z) & (buckets - 1), {x, y, z}, d});
+                }
+            }
+        }
+    }
+    // counting sort by bucket, stable: within a bucket, bodies stay in ascending order
+    m_bucketStart.assign(buckets + 1, 0);
+    for (const CellEntry& entry : m_entries)
+    {
+        ++m_bucketStart[entry.bucket + 1];
+    }
+    for (std::size_t b = 0; b < buckets; ++b)
+    {
+        m_bucketStart[b + 1] += m_bucketStart[b];
+    }
+    m_sorted.resize(m_entries.size());
+    {
+        std::vector<std::uint32_t>& next = m_bucketFill;
+        next.assign(m_bucketStart.begin(), m_bucketStart.end() - 1);
+        for (const CellEntry& entry : m_entries)
+        {
+            m_sorted[next[entry.bucket]++] = entry;
+        }
+    }
+    for (std::size_t b = 0; b < buckets; ++b)
+    {
+        for (std::uint32_t e = m_bucketStart[b]; e < m_bucketStart[b + 1]; ++e)
+        {
+            const CellEntry& first = m_sorted[e];
+            const Aabb& bi = m_bounds[first.body];
+            for (std::uint32_t f = e + 1; f < m_bucketStart[b + 1]; ++f)
+            {
+                const CellEntry& second = m_sorted[f];
+                const Aabb& bj = m_bounds[second.body];
+                if (second.cell != first.cell || !overlap(bi, bj))
+                {
+                    continue;
+                }
+                // report from the one cell that holds the lower corner of the intersection
+                if (cellOf(bi.lower.cwiseMax(bj.lower)) == first.cell)
+                {
+                    pairs.push_back({std::min(first.body, second.body), std::max(first.body, second.body)});
+                }
+            }
+        }
+    }
 }
 
 } // namespace impulse

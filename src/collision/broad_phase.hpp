@@ -3,6 +3,7 @@
 
 #include "dynamics/rigid_body.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -23,19 +24,40 @@ struct Aabb
     Vec3 upper = Vec3::Zero();
 };
 
-/// Sweep and prune along x over boxes that cover each body's time-n pose and its predicted pose,
-/// grown by a margin for what the step's impulses may add. Planes pair with every dynamic body that
-/// comes within the margin of them.
+/// Candidate pairs: the bodies whose boxes overlap, each box covering the body's time-n pose and
+/// its predicted pose, grown by a margin for what the step's impulses may add.
+///
+/// Dynamic bodies are binned in a uniform grid whose cells are as large as the largest dynamic box,
+/// so that a box spans at most two cells per axis and only bodies sharing a cell are compared: the
+/// cost grows with the number of bodies, not its square. A pair sharing several cells is reported
+/// from one of them only, the cell holding the lower corner of the boxes' intersection. Static boxes
+/// are compared with every dynamic body (there are few), and planes pair with every dynamic body
+/// that comes within the margin of them. The pairs are sorted by (a, b): the order, and hence the
+/// simulation, does not depend on how the pairs were found.
 class BroadPhase
 {
   public:
-    /// Fills `pairs`, sorted by (a, b), for the bodies at time n with `predicted` already set.
-    void findPairs(const std::vector<RigidBody>& bodies, Real margin, std::vector<BodyPair>& pairs);
+    /// Fills `pairs` for the bodies at time n with `predicted` already set; bounds are computed on
+    /// `threads` threads.
+    void findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads, std::vector<BodyPair>& pairs);
 
   private:
+    struct CellEntry
+    {
+        std::uint64_t bucket = 0;              ///< hash of the cell
+        std::array<std::int64_t, 3> cell = {}; ///< integer cell coordinates
+        std::uint32_t body = 0;
+    };
+    void pairDynamicBodies(std::vector<BodyPair>& pairs);
+
     std::vector<Aabb> m_bounds;
-    std::vector<std::uint32_t> m_order;
+    std::vector<std::uint32_t> m_dynamic;
+    std::vector<std::uint32_t> m_static;
     std::vector<std::uint32_t> m_planes;
+    std::vector<CellEntry> m_entries;
+    std::vector<CellEntry> m_sorted;
+    std::vector<std::uint32_t> m_bucketStart;
+    std::vector<std::uint32_t> m_bucketFill;
 };
 
 /// Box that contains the shape placed at `pose` (meaningless for planes).

@@ -71,7 +71,8 @@ void spherePlane(const Sphere& a, const Pose& poseA, const Plane& b, const Pose&
     const Real phi = plane.normal.dot(poseA.position) - plane.offset - a.radius;
     if (phi < threshold)
     {
-        out.push_back({poseA.position - plane.normal * (a.radius + 0.5 * phi), plane.normal, phi});
+        // the sphere's own lowest point: the material point that rolls, whatever the overlap
+        out.push_back({poseA.position - plane.normal * a.radius, plane.normal, phi});
     }
 }
 
@@ -83,7 +84,7 @@ void sphereBox(const Sphere& a, const Pose& poseA, const Box& b, const Pose& pos
     if (phi < threshold)
     {
         const Vec3 normal = poseB.rotation * sample.gradient;
-        out.push_back({poseA.position - normal * (a.radius + 0.5 * phi), normal, phi});
+        out.push_back({poseA.position - normal * a.radius, normal, phi});
     }
 }
 

@@ -315,9 +315,17 @@ Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b,
     return uRel;
 }
 
+Pose predictedPose(const RigidBody& body, const PassSettings& settings)
+{
+    return poseAtFraction(body, settings, 1.0);
+}
+
 void predictBody(RigidBody& body, const PassSettings& settings)
 {
-    body.predicted = poseAtFraction(body, settings, 1.0);
+    if (body.dynamic)
+    {
+        body.predicted = poseAtFraction(body, settings, 1.0);
+    }
 }
 
 int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
@@ -367,6 +375,14 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         predictBody(a, settings);
         predictBody(b, settings);
         ++applied;
+        if (eps < 0.0)
+        {
+            // A ramp sweep removes part of each approach, u_n' = |eps| u_n, once per visit (as a
+            // patch does). Repeating would find the same point still approaching and compound the
+            // ramp into |eps|^k, at up to pairIterations impulses per resting point and sweep;
+            // other points of the pair get their turn in the next sweep.
+            break;
+        }
     }
     return applied;
 }

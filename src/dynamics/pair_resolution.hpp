@@ -37,7 +37,11 @@ Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b,
 Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                    const ContactPoint& point, const PassSettings& settings);
 
-/// Places body.predicted at the end of the step under the velocities this pass uses.
+/// Pose of the body at the end of the step under the velocities this pass uses.
+Pose predictedPose(const RigidBody& body, const PassSettings& settings);
+
+/// Places body.predicted at predictedPose. Static bodies keep theirs (their pose, set when they are
+/// created), so that passes on different threads never write to a body they share.
 void predictBody(RigidBody& body, const PassSettings& settings);
 
 /// GBF03 sec. 4: up to settings.pairIterations times, find the deepest approaching sample point of

@@ -24,9 +24,11 @@
 #include "collision/narrow_phase.hpp"
 #include "dynamics/integrate.hpp"
 #include "dynamics/pair_resolution.hpp"
+#include "support/parallel.hpp"
 #include "world/world_impl.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace impulse
 {
@@ -93,6 +95,9 @@ Real broadPhaseMargin(const std::vector<RigidBody>& bodies, const StepOptions& o
 void WorldImpl::step(const StepOptions& options)
 {
     stats = {};
+    threads = resolveThreadCount(options.threads);
+    stats.threads = threads;
+    scratch.resize(static_cast<std::size_t>(threads));
     if (options.scheme == Scheme::Traditional)
     {
         stepTraditional(options);
@@ -109,6 +114,7 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     const PassSettings collision = collisionSettings(options, def.gravity);
     const PassSettings contact = contactSettings(options, def.gravity);
     findCandidatePairs(options, collision);
+    buildIslands();
     solveCollisions(options, collision);
     buildContactGraph(options);
     updateVelocities(options);
@@ -125,18 +131,21 @@ void WorldImpl::stepTraditional(const StepOptions& options)
     updateVelocities(options);
     updatePositions(options);
     findCandidatePairs(options, atCurrentPoseSettings(options, def.gravity, 0.0));
+    buildIslands();
     assignSingleLevel();
     solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0));
     solveContacts(options, atCurrentPoseSettings(options, def.gravity, options.contactThickness));
 }
 
+void WorldImpl::predictAll(const PassSettings& settings)
+{
+    parallelForEach(threads, bodies.size(), [&](std::size_t i) { predictBody(bodies[i], settings); });
+}
+
 void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSettings& settings)
 {
-    for (RigidBody& body : bodies)
-    {
-        predictBody(body, settings);
-    }
-    broadPhase.findPairs(bodies, broadPhaseMargin(bodies, options, def.gravity), pairs);
+    predictAll(settings);
+    broadPhase.findPairs(bodies, broadPhaseMargin(bodies, options, def.gravity), threads, pairs);
     pairCoefficients.clear();
     for (const BodyPair& pair : pairs)
     {
@@ -145,28 +154,139 @@ void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSetting
     stats.candidatePairs = static_cast<int>(pairs.size());
 }
 
+void WorldImpl::buildIslands()
+{
+    // union-find over the pairs of two dynamic bodies; static bodies join no island, as impulses
+    // do not move them
+    std::vector<std::uint32_t> parent(bodies.size());
+    for (std::uint32_t i = 0; i < parent.size(); ++i)
+    {
+        parent[i] = i;
+    }
+    const auto root = [&](std::uint32_t i)
+    {
+        while (parent[i] != i)
+        {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        return i;
+    };
+    for (const BodyPair& pair : pairs)
+    {
+        if (bodies[pair.a].dynamic && bodies[pair.b].dynamic)
+        {
+            const std::uint32_t ra = root(pair.a);
+            const std::uint32_t rb = root(pair.b);
+            parent[std::max(ra, rb)] = std::min(ra, rb); // the root is the lowest index
+        }
+    }
+    // islands numbered in the order of their lowest body, each with its pairs in pair order
+    constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> islandOf(bodies.size(), kNone);
+    std::size_t count = 0;
+    for (const BodyPair& pair : pairs)
+    {
+        for (const std::uint32_t i : {pair.a, pair.b})
+        {
+            if (bodies[i].dynamic && islandOf[root(i)] == kNone)
+            {
+                islandOf[root(i)] = 0; // marks the root as used; numbered below
+            }
+        }
+    }
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+    {
+        if (islandOf[i] != kNone && root(i) == i)
+        {
+            islandOf[i] = static_cast<std::uint32_t>(count++);
+        }
+    }
+    islands.resize(count);
+    for (Island& island : islands)
+    {
+        island.bodies.clear();
+        island.pairs.clear();
+    }
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+    {
+        if (bodies[i].dynamic && islandOf[root(i)] != kNone)
+        {
+            islands[islandOf[root(i)]].bodies.push_back(i);
+        }
+    }
+    for (std::uint32_t k = 0; k < pairs.size(); ++k)
+    {
+        const std::uint32_t member = bodies[pairs[k].a].dynamic ? pairs[k].a : pairs[k].b;
+        islands[islandOf[root(member)]].pairs.push_back(k);
+    }
+    stats.islands = static_cast<int>(count);
+}
+
 void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& settings)
 {
-    for (RigidBody& body : bodies)
+    predictAll(settings);
+    std::vector<int> applied(islands.size(), 0);
+    std::vector<int> sweeps(islands.size(), 0);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    // each island sweeps until a sweep applies nothing to it, or the cap
+                    for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
+                    {
+                        const int impulses = sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], settings);
+                        applied[i] += impulses;
+                        ++sweeps[i];
+                        if (impulses == 0)
+                        {
+                            break;
+                        }
+                    }
+                });
+    for (std::size_t i = 0; i < islands.size(); ++i)
     {
-        predictBody(body, settings);
-    }
-    for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
-    {
-        int applied = 0;
-        for (std::size_t k = 0; k < pairs.size(); ++k)
-        {
-            applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], pairCoefficients[k].restitution,
-                                   pairCoefficients[k].friction, settings, points);
-        }
-        stats.collisionImpulses += applied;
-        ++stats.collisionSweeps;
-        if (applied == 0)
-        {
-            break;
-        }
+        stats.collisionImpulses += applied[i];
+        stats.collisionSweeps = std::max(stats.collisionSweeps, sweeps[i]);
     }
 }
+
+int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const PassSettings& settings)
+{
+    int applied = 0;
+    for (const std::uint32_t k : island.pairs)
+    {
+        applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], pairCoefficients[k].restitution,
+                               pairCoefficients[k].friction, settings, local.points);
+    }
+    return applied;
+}
+
+namespace
+{
+
+// What the probes of the contact graph found for one pair (bits of WorldImpl::pairProbes).
+enum PairProbe : std::uint8_t
+{
+    kRestsOnB = 1, ///< a, advanced alone with its new velocity, goes deeper into b
+    kRestsOnA = 2, ///< b, advanced alone with its new velocity, goes deeper into a
+    kTouching = 4, ///< within the contact thickness at the poses predicted with the old velocities
+};
+
+// Least signed distance of the pair at the given poses, or +infinity without points.
+Real leastPhi(const RigidBody& probe, const Pose& probePose, const RigidBody& other, Real threshold,
+              std::vector<ContactPoint>& points)
+{
+    points.clear();
+    collideShapes(probe.shape, probePose, other.shape, other.predicted, threshold, points);
+    Real least = std::numeric_limits<Real>::infinity();
+    for (const ContactPoint& point : points)
+    {
+        least = std::min(least, point.phi);
+    }
+    return least;
+}
+
+} // namespace
 
 void WorldImpl::buildContactGraph(const StepOptions& options)
 {
@@ -176,46 +296,49 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     const PassSettings oldVelocity = contactSettings(options, def.gravity);
     PassSettings newVelocity = oldVelocity;
     newVelocity.predictWithAcceleration = true;
-    for (RigidBody& body : bodies)
-    {
-        predictBody(body, oldVelocity);
-    }
-    bodyPairs.assign(bodies.size(), {});
-    for (std::uint32_t k = 0; k < pairs.size(); ++k)
-    {
-        bodyPairs[pairs[k].a].push_back(k);
-        bodyPairs[pairs[k].b].push_back(k);
-    }
-    const auto deepest = [&](const RigidBody& probe, const Pose& probePose, const RigidBody& other)
-    {
-        points.clear();
-        collideShapes(probe.shape, probePose, other.shape, other.predicted, 0.0, points);
-        Real least = 0.0;
-        for (const ContactPoint& point : points)
-        {
-            least = std::min(least, point.phi);
-        }
-        return least;
-    };
+    predictAll(oldVelocity);
+    probePoses.resize(bodies.size());
+    parallelForEach(threads, bodies.size(), [&](std::size_t i) { probePoses[i] = predictedPose(bodies[i], newVelocity); });
+
+    // every probe of every pair at once: each reads the predicted poses and writes its own slot
+    pairProbes.assign(pairs.size(), 0);
+    parallelFor(threads, pairs.size(),
+                [&](std::size_t k, int thread)
+                {
+                    std::vector<ContactPoint>& points = scratch[static_cast<std::size_t>(thread)].points;
+                    const RigidBody& a = bodies[pairs[k].a];
+                    const RigidBody& b = bodies[pairs[k].b];
+                    std::uint8_t found = 0;
+                    if (a.dynamic)
+                    {
+                        const Real before = leastPhi(a, a.predicted, b, options.contactThickness, points);
+                        found |= before < options.contactThickness ? kTouching : 0;
+                        found |= std::min(leastPhi(a, probePoses[pairs[k].a], b, 0.0, points), 0.0) < std::min(before, 0.0)
+                                     ? kRestsOnB
+                                     : 0;
+                    }
+                    if (b.dynamic)
+                    {
+                        const Real before = leastPhi(b, b.predicted, a, options.contactThickness, points);
+                        found |= before < options.contactThickness ? kTouching : 0;
+                        found |= std::min(leastPhi(b, probePoses[pairs[k].b], a, 0.0, points), 0.0) < std::min(before, 0.0)
+                                     ? kRestsOnA
+                                     : 0;
+                    }
+                    pairProbes[k] = found;
+                });
     supportEdges.clear();
-    for (std::uint32_t p = 0; p < bodies.size(); ++p)
+    for (std::size_t k = 0; k < pairs.size(); ++k)
     {
-        RigidBody& probe = bodies[p];
-        if (!probe.dynamic)
+        stats.contactPairs += (pairProbes[k] & kTouching) != 0 ? 1 : 0;
+        if ((pairProbes[k] & kRestsOnB) != 0)
         {
-            continue;
+            supportEdges.push_back({pairs[k].b, pairs[k].a});
         }
-        const Pose oldPose = probe.predicted;
-        predictBody(probe, newVelocity);
-        for (const std::uint32_t k : bodyPairs[p])
+        if ((pairProbes[k] & kRestsOnA) != 0)
         {
-            const std::uint32_t j = pairs[k].a == p ? pairs[k].b : pairs[k].a;
-            if (deepest(probe, probe.predicted, bodies[j]) < deepest(probe, oldPose, bodies[j]))
-            {
-                supportEdges.push_back({j, p});
-            }
+            supportEdges.push_back({pairs[k].a, pairs[k].b});
         }
-        probe.predicted = oldPose;
     }
 
     std::vector<bool> isDynamic(bodies.size());
@@ -233,28 +356,20 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     stats.contactLevels = highest + 1;
 
     // visit pairs from the ground up: a pair belongs to the higher level of its two bodies
-    std::vector<std::uint32_t> order(pairs.size());
     pairLevels.resize(pairs.size());
     for (std::uint32_t k = 0; k < pairs.size(); ++k)
     {
-        order[k] = k;
         pairLevels[k] = std::max(bodies[pairs[k].a].level, bodies[pairs[k].b].level);
     }
-    std::sort(order.begin(), order.end(),
-              [&](std::uint32_t l, std::uint32_t r)
-              { return pairLevels[l] < pairLevels[r] || (pairLevels[l] == pairLevels[r] && l < r); });
-    std::vector<BodyPair> sortedPairs(pairs.size());
-    std::vector<PairCoefficients> sortedCoefficients(pairs.size());
-    std::vector<int> sortedLevels(pairs.size());
-    for (std::size_t k = 0; k < order.size(); ++k)
-    {
-        sortedPairs[k] = pairs[order[k]];
-        sortedCoefficients[k] = pairCoefficients[order[k]];
-        sortedLevels[k] = pairLevels[order[k]];
-    }
-    pairs.swap(sortedPairs);
-    pairCoefficients.swap(sortedCoefficients);
-    pairLevels.swap(sortedLevels);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    std::vector<std::uint32_t>& order = islands[i].pairs;
+                    std::sort(order.begin(), order.end(),
+                              [&](std::uint32_t l, std::uint32_t r)
+                              { return pairLevels[l] < pairLevels[r] || (pairLevels[l] == pairLevels[r] && l < r); });
+                    planLevels(islands[i], scratch[static_cast<std::size_t>(thread)]);
+                });
 }
 
 void WorldImpl::assignSingleLevel()
@@ -267,6 +382,10 @@ void WorldImpl::assignSingleLevel()
     }
     pairLevels.assign(pairs.size(), 0);
     stats.contactLevels = 1;
+    for (Island& island : islands)
+    {
+        planLevels(island, scratch[0]);
+    }
 }
 
 void WorldImpl::updateVelocities(const StepOptions& options)
@@ -282,20 +401,28 @@ void WorldImpl::updateVelocities(const StepOptions& options)
 
 void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& settings)
 {
-    for (RigidBody& body : bodies)
+    predictAll(settings);
+    std::vector<int> applied(islands.size(), 0);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    for (int sweep = 1; sweep <= options.contactIterations; ++sweep)
+                    {
+                        // restitution ramps -1 + 1/n, ..., 0: early sweeps remove only part of each approach
+                        const Real eps =
+                            -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
+                        const int impulses =
+                            sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], eps, false, settings);
+                        applied[i] += impulses;
+                        if (impulses == 0)
+                        {
+                            break;
+                        }
+                    }
+                });
+    for (const int impulses : applied)
     {
-        predictBody(body, settings);
-    }
-    for (int sweep = 1; sweep <= options.contactIterations; ++sweep)
-    {
-        // restitution ramps -1 + 1/n, ..., 0: early sweeps remove only part of each approach
-        const Real eps = -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
-        const int applied = sweepLevels(eps, false, settings);
-        stats.contactImpulses += applied;
-        if (applied == 0)
-        {
-            break;
-        }
+        stats.contactImpulses += impulses;
     }
 }
 
@@ -304,90 +431,137 @@ void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
     // GBF03 sec. 8: one more sweep up the levels with eps = 0, every body of a lower level frozen
     // (infinite mass) while a level is processed: corrections only travel upward, and a box can no
     // longer push its supports into the ground.
-    for (RigidBody& body : bodies)
+    predictAll(settings);
+    std::vector<int> applied(islands.size(), 0);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    applied[i] = sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], 0.0, true, settings);
+                    for (const std::uint32_t b : islands[i].bodies)
+                    {
+                        bodies[b].frozen = false;
+                    }
+                });
+    for (const int impulses : applied)
     {
-        predictBody(body, settings);
-    }
-    stats.shockImpulses += sweepLevels(0.0, true, settings);
-    for (RigidBody& body : bodies)
-    {
-        body.frozen = false;
+        stats.shockImpulses += impulses;
     }
 }
 
-int WorldImpl::sweepLevels(Real eps, bool freezeLowerLevels, const PassSettings& settings)
+void WorldImpl::planLevels(Island& island, ThreadScratch& local)
 {
-    // Pairs are sorted by level, a pair belonging to the higher level of its two bodies. Within a
-    // level each body is resolved against all its supports at once (the pairs with a lower-level or
-    // static partner), then the pairs between two bodies of the level are resolved two-way.
-    int applied = 0;
-    for (std::size_t first = 0; first < pairs.size();)
+    // The island's pairs are sorted by level, a pair belonging to the higher level of its two
+    // bodies. Within a level each body is resolved against all its supports at once (the pairs with
+    // a lower-level or static partner), then the pairs between two bodies of the level two-way.
+    // Levels do not change during the contact pass, so this order is worked out once per step.
+    island.levels.clear();
+    island.levelBodies.clear();
+    island.supportStart.clear();
+    island.supports.clear();
+    island.twoWayPairs.clear();
+    island.frozen.clear();
+    const std::vector<std::uint32_t>& order = island.pairs;
+    for (std::size_t first = 0; first < order.size();)
     {
-        const int level = pairLevels[first];
+        const int level = pairLevels[order[first]];
         std::size_t last = first;
-        while (last < pairs.size() && pairLevels[last] == level)
+        while (last < order.size() && pairLevels[order[last]] == level)
         {
             ++last;
         }
-        levelBodies.clear();
-        for (std::size_t k = first; k < last; ++k)
+        Island::Level run;
+        run.firstBody = static_cast<std::uint32_t>(island.levelBodies.size());
+        run.firstPair = static_cast<std::uint32_t>(island.twoWayPairs.size());
+        run.firstFrozen = static_cast<std::uint32_t>(island.frozen.size());
+        local.supportOf.clear();
+        for (std::size_t n = first; n < last; ++n)
         {
-            for (const std::uint32_t i : {pairs[k].a, pairs[k].b})
-            {
-                if (freezeLowerLevels)
-                {
-                    bodies[i].frozen = bodies[i].dynamic && bodies[i].level < level;
-                }
-                if (bodies[i].dynamic && bodies[i].level == level)
-                {
-                    levelBodies.push_back(i);
-                }
-            }
-        }
-        std::sort(levelBodies.begin(), levelBodies.end());
-        levelBodies.erase(std::unique(levelBodies.begin(), levelBodies.end()), levelBodies.end());
-        for (const std::uint32_t b : levelBodies)
-        {
-            supports.clear();
-            for (std::size_t k = first; k < last; ++k)
-            {
-                const BodyPair& pair = pairs[k];
-                const std::uint32_t other = pair.a == b ? pair.b : (pair.b == b ? pair.a : b);
-                if (other != b && bodies[other].level < level)
-                {
-                    supports.push_back({&bodies[other], pairCoefficients[k].friction});
-                }
-            }
-            applied += resolveOnSupports(bodies[b], supports, eps, settings, points);
-        }
-        for (std::size_t k = first; k < last; ++k)
-        {
+            const std::uint32_t k = order[n];
             const BodyPair& pair = pairs[k];
+            for (const std::uint32_t i : {pair.a, pair.b})
+            {
+                const std::uint32_t other = i == pair.a ? pair.b : pair.a;
+                if (bodies[i].dynamic && bodies[i].level < level)
+                {
+                    island.frozen.push_back(i);
+                }
+                if (bodies[i].dynamic && bodies[i].level == level && bodies[other].level < level)
+                {
+                    local.supportOf.emplace_back(i, static_cast<std::uint32_t>(n));
+                }
+            }
             if (bodies[pair.a].level == level && bodies[pair.b].level == level)
             {
-                applied +=
-                    resolvePair(bodies[pair.a], bodies[pair.b], eps, pairCoefficients[k].friction, settings, points);
+                island.twoWayPairs.push_back(k);
             }
         }
+        std::sort(local.supportOf.begin(), local.supportOf.end()); // by body, then in pair order
+        for (std::size_t n = 0; n < local.supportOf.size(); ++n)
+        {
+            const std::uint32_t b = local.supportOf[n].first;
+            if (n == 0 || b != local.supportOf[n - 1].first)
+            {
+                island.levelBodies.push_back(b);
+                island.supportStart.push_back(static_cast<std::uint32_t>(island.supports.size()));
+            }
+            const std::uint32_t k = order[local.supportOf[n].second];
+            const std::uint32_t other = pairs[k].a == b ? pairs[k].b : pairs[k].a;
+            island.supports.push_back({&bodies[other], pairCoefficients[k].friction});
+        }
+        run.endBody = static_cast<std::uint32_t>(island.levelBodies.size());
+        run.endPair = static_cast<std::uint32_t>(island.twoWayPairs.size());
+        run.endFrozen = static_cast<std::uint32_t>(island.frozen.size());
+        island.levels.push_back(run);
         first = last;
+    }
+    island.supportStart.push_back(static_cast<std::uint32_t>(island.supports.size()));
+}
+
+int WorldImpl::sweepLevels(const Island& island, ThreadScratch& local, Real eps, bool freezeLowerLevels,
+                           const PassSettings& settings)
+{
+    int applied = 0;
+    for (const Island::Level& level : island.levels)
+    {
+        if (freezeLowerLevels)
+        {
+            for (std::uint32_t n = level.firstFrozen; n < level.endFrozen; ++n)
+            {
+                bodies[island.frozen[n]].frozen = true;
+            }
+        }
+        for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+        {
+            local.supports.assign(island.supports.begin() + island.supportStart[n],
+                                  island.supports.begin() + island.supportStart[n + 1]);
+            applied += resolveOnSupports(bodies[island.levelBodies[n]], local.supports, eps, settings, local.points);
+        }
+        for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
+        {
+            const std::uint32_t k = island.twoWayPairs[n];
+            applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], eps, pairCoefficients[k].friction, settings,
+                                   local.points);
+        }
     }
     return applied;
 }
 
 void WorldImpl::updatePositions(const StepOptions& options)
 {
-    for (RigidBody& body : bodies)
-    {
-        if (!body.dynamic)
-        {
-            continue;
-        }
-        const Pose next = advancePose(body.pose(), body.linearVelocity, body.angularVelocity, options.dt);
-        body.position = next.position;
-        body.orientation = next.orientation;
-        body.rotation = next.rotation;
-        updateDerivedQuantities(body);
-    }
+    parallelForEach(threads, bodies.size(),
+                    [&](std::size_t i)
+                    {
+                        RigidBody& body = bodies[i];
+                        if (!body.dynamic)
+                        {
+                            return;
+                        }
+                        const Pose next = advancePose(body.pose(), body.linearVelocity, body.angularVelocity, options.dt);
+                        body.position = next.position;
+                        body.orientation = next.orientation;
+                        body.rotation = next.rotation;
+                        updateDerivedQuantities(body);
+                    });
 }
 
 } // namespace impulse

@@ -206,6 +206,10 @@ void World::step(const StepOptions& options)
     {
         throw std::invalid_argument("iterations: collision >= 0, contact >= 1 and pair >= 1 required");
     }
+    if (options.threads < 0)
+    {
+        throw std::invalid_argument("threads: must be 0 (one per hardware thread) or a positive count");
+    }
     m_impl->step(options);
 }
 

@@ -9,12 +9,44 @@
 
 #include <impulse/world.hpp>
 
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
 
 namespace impulse
 {
+
+/// Dynamic bodies connected through candidate pairs, with those pairs. Impulses never cross from one
+/// island to another, so islands are solved independently, each to its own convergence, and in
+/// parallel.
+struct Island
+{
+    std::vector<std::uint32_t> bodies; ///< dynamic, ascending
+    std::vector<std::uint32_t> pairs;  ///< indices into WorldImpl::pairs: ascending, then by level
+
+    /// The order of the contact pass and shock propagation, fixed once the levels are known.
+    struct Level
+    {
+        std::uint32_t firstBody = 0, endBody = 0;       ///< range of levelBodies
+        std::uint32_t firstPair = 0, endPair = 0;       ///< range of twoWayPairs
+        std::uint32_t firstFrozen = 0, endFrozen = 0;   ///< range of frozen
+    };
+    std::vector<Level> levels;
+    std::vector<std::uint32_t> levelBodies;  ///< bodies of each level that rest on something, ascending
+    std::vector<std::uint32_t> supportStart; ///< per levelBodies entry: its range of supports
+    std::vector<Support> supports;           ///< in pair order
+    std::vector<std::uint32_t> twoWayPairs;  ///< pairs of two bodies of the same level, in pair order
+    std::vector<std::uint32_t> frozen;       ///< per level: the lower-level bodies shock propagation freezes
+};
+
+/// What one worker thread reuses from pass to pass.
+struct ThreadScratch
+{
+    std::vector<ContactPoint> points;
+    std::vector<Support> supports;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> supportOf; ///< (body, pair), sorted
+};
 
 class WorldImpl
 {
@@ -27,15 +59,16 @@ class WorldImpl
     StepStats stats;
 
     // per-step scratch, kept to avoid reallocating every step
-    std::vector<BodyPair> pairs;
+    std::vector<BodyPair> pairs;                    ///< candidate pairs, sorted by (a, b)
     std::vector<PairCoefficients> pairCoefficients; ///< parallel to pairs
-    std::vector<ContactPoint> points;
+    std::vector<int> pairLevels;                    ///< parallel to pairs: max level of the two bodies
     BroadPhase broadPhase;
-    std::vector<int> pairLevels;                       ///< parallel to pairs: max level of the two bodies
-    std::vector<SupportEdge> supportEdges;             ///< contact graph of this step
-    std::vector<std::vector<std::uint32_t>> bodyPairs; ///< per body: indices into pairs
-    std::vector<std::uint32_t> levelBodies;            ///< scratch of sweepLevels
-    std::vector<Support> supports;                     ///< scratch of sweepLevels
+    std::vector<Island> islands;
+    std::vector<SupportEdge> supportEdges; ///< contact graph of this step
+    std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
+    std::vector<Pose> probePoses;          ///< per body: predicted with the new velocity v + dt a
+    std::vector<ThreadScratch> scratch;    ///< one per worker thread
+    int threads = 1;                       ///< worker threads of this step
 
     PairCoefficients coefficients(MaterialId a, MaterialId b) const;
     void step(const StepOptions& options);
@@ -46,14 +79,20 @@ class WorldImpl
     void stepTraditional(const StepOptions& options);
 
     void findCandidatePairs(const StepOptions& options, const PassSettings& settings);
+    void buildIslands();
     void solveCollisions(const StepOptions& options, const PassSettings& settings);
     void updateVelocities(const StepOptions& options);
     void buildContactGraph(const StepOptions& options);
     void assignSingleLevel();
     void solveContacts(const StepOptions& options, const PassSettings& settings);
     void propagateShock(const StepOptions& options, const PassSettings& settings);
-    int sweepLevels(Real eps, bool freezeLowerLevels, const PassSettings& settings);
     void updatePositions(const StepOptions& options);
+
+    void predictAll(const PassSettings& settings);
+    int sweepPairs(const Island& island, ThreadScratch& scratch, const PassSettings& settings);
+    void planLevels(Island& island, ThreadScratch& scratch);
+    int sweepLevels(const Island& island, ThreadScratch& scratch, Real eps, bool freezeLowerLevels,
+                    const PassSettings& settings);
 };
 
 } // namespace impulse

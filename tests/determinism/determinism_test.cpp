@@ -3,9 +3,11 @@
 #include "support/scene_run.hpp"
 
 #include <impulse/io/trajectory.hpp>
+#include <impulse/mesh_shapes.hpp>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace impulse::test
@@ -39,6 +41,114 @@ TEST_P(RepeatedRun, GivesByteIdenticalTrajectories)
 
 INSTANTIATE_TEST_SUITE_P(ReferenceScenes, RepeatedRun,
                          ::testing::Values("ball_drop_elastic", "spin_friction", "incline_slide", "newton_cradle"));
+
+// Four heaps a metre apart, each of spheres, cubes, capsules and tori dropped onto one another: the
+// heaps are separate islands, and within each the bodies collide, rest and stack.
+World fourHeaps(std::vector<BodyId>& dynamic)
+{
+    World world;
+    const MaterialId material = world.createMaterial({.restitution = 0.3, .friction = 0.5});
+    world.createBody({.type = BodyType::Static, .shape = Plane{}, .material = material});
+    const Mesh torus{MeshGeometry::build(torusMesh(0.12, 0.04, 24, 12))};
+    const Shape shapes[] = {Sphere{0.1}, Box{Vec3(0.1, 0.08, 0.06)}, Capsule{0.05, 0.08}, torus};
+    for (int heap = 0; heap < 4; ++heap)
+    {
+        const Vec3 centre(heap % 2 == 0 ? -0.5 : 0.5, heap < 2 ? -0.5 : 0.5, 0.0);
+        for (int k = 0; k < 12; ++k)
+        {
+            // a loose column, each body a little off the axis and turned
+            const Vec3 offset(0.03 * std::cos(1.7 * k + heap), 0.03 * std::sin(1.3 * k + heap), 0.15 + 0.22 * k);
+            const Quat turn(Eigen::AngleAxisd(0.4 * k + heap, Vec3(1.0, 0.5 * k, 0.3).normalized()));
+            dynamic.push_back(world.createBody({.shape = shapes[(k + heap) % 4],
+                                                .material = material,
+                                                .density = 500.0,
+                                                .position = centre + offset,
+                                                .orientation = turn}));
+        }
+    }
+    return world;
+}
+
+std::string fourHeapsTrajectory(int threads, int& mostIslands)
+{
+    std::vector<BodyId> dynamic;
+    World world = fourHeaps(dynamic);
+    StepOptions options;
+    options.threads = threads;
+    std::ostringstream out;
+    io::TrajectoryWriter writer(out);
+    writer.writeHeader();
+    mostIslands = 0;
+    for (int step = 1; step <= 600; ++step)
+    {
+        world.step(options);
+        EXPECT_EQ(world.lastStepStats().threads, threads);
+        mostIslands = std::max(mostIslands, world.lastStepStats().islands);
+        writer.writeSample(world.time(), world, dynamic);
+    }
+    return out.str();
+}
+
+TEST(Threads, OneTwoAndFourThreadsGiveByteIdenticalTrajectories)
+{
+    int islands = 0;
+    const std::string one = fourHeapsTrajectory(1, islands);
+    EXPECT_GE(islands, 4) << "the heaps should be solved as separate islands";
+    for (const int threads : {2, 4})
+    {
+        int ignored = 0;
+        EXPECT_TRUE(fourHeapsTrajectory(threads, ignored) == one)
+            << "the trajectory at " << threads << " threads differs from the one at 1";
+    }
+}
+
+// A stack of five cubes at x, and optionally a second, different one (heavier, tilted) 3 m away.
+std::string firstStackTrajectory(bool withSecondStack, int& islands)
+{
+    World world;
+    const MaterialId material = world.createMaterial({.restitution = 0.2, .friction = 0.6});
+    world.createBody({.type = BodyType::Static, .shape = Plane{}, .material = material});
+    std::vector<BodyId> first;
+    for (int k = 0; k < 5; ++k)
+    {
+        first.push_back(world.createBody({.shape = Box{Vec3::Constant(0.1)},
+                                          .material = material,
+                                          .mass = 1.0,
+                                          .position = Vec3(0.01 * k, 0, 0.1 + 0.205 * k),
+                                          .orientation = Quat(Eigen::AngleAxisd(0.05 * k, Vec3::UnitZ()))}));
+    }
+    if (withSecondStack)
+    {
+        for (int k = 0; k < 5; ++k)
+        {
+            world.createBody({.shape = Box{Vec3::Constant(0.1)},
+                              .material = material,
+                              .mass = 3.0,
+                              .position = Vec3(3.0 - 0.02 * k, 0, 0.12 + 0.21 * k),
+                              .orientation = Quat(Eigen::AngleAxisd(0.1, Vec3::UnitX()))});
+        }
+    }
+    std::ostringstream out;
+    io::TrajectoryWriter writer(out);
+    for (int step = 1; step <= 500; ++step)
+    {
+        world.step({});
+        islands = std::max(islands, world.lastStepStats().islands);
+        writer.writeSample(world.time(), world, first);
+    }
+    return out.str();
+}
+
+TEST(Islands, AStackMovesTheSameWithOrWithoutAnotherFarAway)
+{
+    int alone = 0;
+    int together = 0;
+    const std::string withoutSecond = firstStackTrajectory(false, alone);
+    const std::string withSecond = firstStackTrajectory(true, together);
+    EXPECT_EQ(alone, 1);
+    EXPECT_EQ(together, 2);
+    EXPECT_TRUE(withoutSecond == withSecond) << "a stack 3 m away changed the first stack's trajectory";
+}
 
 TEST(StateHash, ChangesWithTheStateAndNotWithoutIt)
 {

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+// The broad phase against the definition of its result: every pair of bodies whose grown boxes
+// overlap, found by comparing all pairs, for bodies of very different sizes, far apart, touching
+// in several cells at once, static and planar.
+#include "collision/broad_phase.hpp"
+
+#include <impulse/impulse.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace impulse
+{
+namespace
+{
+
+RigidBody makeBody(const Shape& shape, const Vec3& position, const Quat& orientation, bool dynamic)
+{
+    RigidBody body;
+    body.shape = shape;
+    body.dynamic = dynamic;
+    body.position = position;
+    body.orientation = orientation;
+    body.rotation = orientation.toRotationMatrix();
+    body.boundingRadius = impulse::boundingRadius(shape);
+    body.predicted = body.pose();
+    return body;
+}
+
+bool overlap(const Aabb& l, const Aabb& r)
+{
+    return (l.lower.array() <= r.upper.array()).all() && (r.lower.array() <= l.upper.array()).all();
+}
+
+// every pair by the definition: grown boxes over both poses overlap, at least one body dynamic;
+// planes pair with dynamic bodies whose bounding sphere comes within the margin
+std::vector<std::pair<std::uint32_t, std::uint32_t>> allPairs(const std::vector<RigidBody>& bodies, Real margin)
+{
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    const auto grown = [&](const RigidBody& body)
+    {
+        const Aabb now = shapeBounds(body.shape, body.pose());
+        const Aabb next = shapeBounds(body.shape, body.predicted);
+        const Real grow = body.dynamic ? margin : 0.0;
+        return Aabb{now.lower.cwiseMin(next.lower).array() - grow, now.upper.cwiseMax(next.upper).array() + grow};
+    };
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+    {
+        for (std::uint32_t j = i + 1; j < bodies.size(); ++j)
+        {
+            const RigidBody& a = bodies[i];
+            const RigidBody& b = bodies[j];
+            if (!a.dynamic && !b.dynamic)
+            {
+                continue;
+            }
+            const bool planeA = std::holds_alternative<Plane>(a.shape);
+            const bool planeB = std::holds_alternative<Plane>(b.shape);
+            if (planeA || planeB)
+            {
+                const RigidBody& body = planeA ? b : a;
+                const Real height = std::min(body.position.z(), body.predicted.position.z());
+                if (height - body.boundingRadius <= margin)
+                {
+                    pairs.emplace_back(i, j);
+                }
+                continue;
+            }
+            if (overlap(grown(a), grown(b)))
+            {
+                pairs.emplace_back(i, j);
+            }
+        }
+    }
+    return pairs;
+}
+
+TEST(BroadPhase, FindsExactlyThePairsWhoseBoxesOverlap)
+{
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<Real> unit(0.0, 1.0);
+    for (int trial = 0; trial < 20; ++trial)
+    {
+        std::vector<RigidBody> bodies;
+        bodies.push_back(makeBody(Plane{}, Vec3::Zero(), Quat::Identity(), false));
+        bodies.push_back(makeBody(Box{Vec3(0.1, 2.0, 1.0)}, Vec3(2.1, 0, 1), Quat::Identity(), false)); // a wall
+        for (int k = 0; k < 300; ++k)
+        {
+            // mostly small bodies in a 3 m cube, some ten times larger, a few far away
+            const Real size = unit(random) < 0.1 ? 0.5 + unit(random) : 0.02 + 0.1 * unit(random);
+            Vec3 position(3.0 * unit(random) - 1.0, 3.0 * unit(random) - 1.5, 3.0 * unit(random));
+            if (k % 50 == 0)
+            {
+                position *= 1e4;
+            }
+            const Quat orientation = Quat(Eigen::Vector4d::Random()).normalized();
+            const Shape shape = k % 2 == 0 ? Shape{Sphere{size}} : Shape{Box{Vec3(size, 0.5 * size, 0.3 * size)}};
+            RigidBody body = makeBody(shape, position, orientation, true);
+            body.predicted.position += Vec3(0.0, 0.0, -0.05 * unit(random)); // moving down this step
+            bodies.push_back(body);
+        }
+        const Real margin = 0.01;
+        BroadPhase broadPhase;
+        std::vector<BodyPair> found;
+        broadPhase.findPairs(bodies, margin, 1, found);
+        const auto expected = allPairs(bodies, margin);
+        ASSERT_EQ(found.size(), expected.size()) << "trial " << trial;
+        for (std::size_t n = 0; n < found.size(); ++n)
+        {
+            EXPECT_EQ(found[n].a, expected[n].first) << "trial " << trial << ", pair " << n;
+            EXPECT_EQ(found[n].b, expected[n].second) << "trial " << trial << ", pair " << n;
+        }
+        EXPECT_GT(expected.size(), 300u) << "trial " << trial << ": too few pairs to say anything";
+
+        std::vector<BodyPair> threaded;
+        broadPhase.findPairs(bodies, margin, 2, threaded);
+        ASSERT_EQ(threaded.size(), found.size());
+    }
+}
+
+TEST(BroadPhase, NothingPairsWithNothingAndStaticBodiesNeverPairWithEachOther)
+{
+    std::vector<RigidBody> bodies;
+    BroadPhase broadPhase;
+    std::vector<BodyPair> pairs;
+    broadPhase.findPairs(bodies, 0.01, 1, pairs);
+    EXPECT_TRUE(pairs.empty());
+    bodies.push_back(makeBody(Plane{}, Vec3::Zero(), Quat::Identity(), false));
+    bodies.push_back(makeBody(Box{Vec3(1, 1, 1)}, Vec3::Zero(), Quat::Identity(), false));
+    bodies.push_back(makeBody(Box{Vec3(1, 1, 1)}, Vec3(0.5, 0, 0), Quat::Identity(), false));
+    broadPhase.findPairs(bodies, 0.01, 1, pairs);
+    EXPECT_TRUE(pairs.empty());
+    bodies.push_back(makeBody(Sphere{0.1}, Vec3(0.3, 0, 0.5), Quat::Identity(), true));
+    broadPhase.findPairs(bodies, 0.01, 1, pairs);
+    ASSERT_EQ(pairs.size(), 3u); // the plane and both boxes
+}
+
+} // namespace
+} // namespace impulse
