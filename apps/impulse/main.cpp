@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The impulse command-line tool.
+#include "bench_command.hpp"
 #include "run_command.hpp"
 #ifdef IMPULSE_HAVE_MUJOCO
 #include "mujoco_commands.hpp"
@@ -49,6 +50,7 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber);
 
     const impulse::app::SeeCommands see(app);
+    const impulse::app::BenchCommand bench(app);
 
 #ifdef IMPULSE_HAVE_MUJOCO
     std::string exportScene;
@@ -82,6 +84,10 @@ int main(int argc, char** argv)
         return code == 0 ? 0 : 2;
     }
     if (const std::optional<int> code = see.runChosen())
+    {
+        return *code;
+    }
+    if (const std::optional<int> code = bench.runChosen())
     {
         return *code;
     }
