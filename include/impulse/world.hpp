@@ -67,6 +67,16 @@ struct StepStats
     int contactPairs = 0;      ///< candidate pairs touching (within the contact thickness) at the contact graph
     int islands = 0;           ///< groups of dynamic bodies connected by candidate pairs, solved independently
     int threads = 1;           ///< worker threads the step used
+    /// Wall time of each stage of the step, milliseconds (measured, so not deterministic).
+    struct StageTimes
+    {
+        double candidatePairs = 0.0; ///< predictions, broad phase and islands
+        double collisionPass = 0.0;
+        double contactGraph = 0.0;
+        double contactPass = 0.0; ///< with the velocity update
+        double shockPropagation = 0.0;
+        double positionUpdate = 0.0;
+    } milliseconds;
 };
 
 class WorldImpl;

@@ -28,6 +28,7 @@
 #include "world/world_impl.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 
 namespace impulse
@@ -90,6 +91,21 @@ Real broadPhaseMargin(const std::vector<RigidBody>& bodies, const StepOptions& o
     return 2.0 * options.dt * fastest + options.contactThickness;
 }
 
+// Wall time between laps, for StepStats::milliseconds.
+class StageClock
+{
+  public:
+    void lap(double& milliseconds)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        milliseconds += std::chrono::duration<double, std::milli>(now - m_last).count();
+        m_last = now;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
+};
+
 } // namespace
 
 void WorldImpl::step(const StepOptions& options)
@@ -113,17 +129,24 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
 {
     const PassSettings collision = collisionSettings(options, def.gravity);
     const PassSettings contact = contactSettings(options, def.gravity);
+    StageClock clock;
     findCandidatePairs(options, collision);
     buildIslands();
+    clock.lap(stats.milliseconds.candidatePairs);
     solveCollisions(options, collision);
+    clock.lap(stats.milliseconds.collisionPass);
     buildContactGraph(options);
+    clock.lap(stats.milliseconds.contactGraph);
     updateVelocities(options);
     solveContacts(options, contact);
+    clock.lap(stats.milliseconds.contactPass);
     if (options.shockPropagation)
     {
         propagateShock(options, contact);
     }
+    clock.lap(stats.milliseconds.shockPropagation);
     updatePositions(options);
+    clock.lap(stats.milliseconds.positionUpdate);
 }
 
 void WorldImpl::stepTraditional(const StepOptions& options)
