@@ -18,6 +18,7 @@ packages=(
   chromium-driver      # ... driven through WebDriver
   python3-selenium     # ... by a Python script
   libbenchmark-dev     # benchmarks
+  libbullet-dev        # optional: impulse_bench_bullet runs the same scenes in Bullet 3.24 for comparison
   clang-format         # formatting check
   libmujoco-dev        # optional: MJCF models, impulse compare (impulse_mujoco, MuJoCo 2.2.2)
 )
