@@ -375,12 +375,13 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         predictBody(a, settings);
         predictBody(b, settings);
         ++applied;
-        if (eps < 0.0)
+        if (eps < 0.0 && patch.size() == 1)
         {
-            // A ramp sweep removes part of each approach, u_n' = |eps| u_n, once per visit (as a
-            // patch does). Repeating would find the same point still approaching and compound the
-            // ramp into |eps|^k, at up to pairIterations impulses per resting point and sweep;
-            // other points of the pair get their turn in the next sweep.
+            // A ramp sweep removes part of an approach, u_n' = |eps| u_n, once per visit (as a
+            // patch does). With a single approaching point, repeating would find that same point
+            // still approaching and compound the ramp into |eps|^k, at up to pairIterations
+            // impulses per resting ball and sweep. Several points go on sharing the work in depth
+            // order, as the paper's loop does.
             break;
         }
     }

@@ -132,7 +132,7 @@ TEST(BroadPhase, NothingPairsWithNothingAndStaticBodiesNeverPairWithEachOther)
     bodies.push_back(makeBody(Box{Vec3(1, 1, 1)}, Vec3(0.5, 0, 0), Quat::Identity(), false));
     broadPhase.findPairs(bodies, 0.01, 1, pairs);
     EXPECT_TRUE(pairs.empty());
-    bodies.push_back(makeBody(Sphere{0.1}, Vec3(0.3, 0, 0.5), Quat::Identity(), true));
+    bodies.push_back(makeBody(Sphere{0.1}, Vec3(0.3, 0, 0.05), Quat::Identity(), true)); // on the plane
     broadPhase.findPairs(bodies, 0.01, 1, pairs);
     ASSERT_EQ(pairs.size(), 3u); // the plane and both boxes
 }

@@ -125,8 +125,8 @@ TEST(NarrowPhase, SpherePlaneDepthIsHeightMinusRadius)
     ASSERT_EQ(samples.size(), 1u);
     EXPECT_NEAR(samples[0].phi, -0.1, kTol);
     expectVecNear(samples[0].normal, Vec3::UnitZ());
-    // overlap from the sphere's bottom (z = -0.1) to the plane (z = 0): middle at -0.05
-    expectVecNear(samples[0].point, Vec3(0.3, -0.2, -0.05));
+    // the sphere's own lowest point (z = -0.1), the material point that rolls on the plane
+    expectVecNear(samples[0].point, Vec3(0.3, -0.2, -0.1));
 }
 
 TEST(NarrowPhase, SpherePlaneUsesThePlaneBodyPose)
@@ -155,8 +155,8 @@ TEST(NarrowPhase, SphereOutsideBoxFaceUsesFaceNormal)
     ASSERT_EQ(samples.size(), 1u);
     EXPECT_NEAR(samples[0].phi, 0.3 - 0.5, kTol);
     expectVecNear(samples[0].normal, Vec3::UnitX());
-    // overlap along x from 0.8 (sphere) to 1.0 (face): middle at 0.9
-    expectVecNear(samples[0].point, Vec3(0.9, 0.2, -0.1));
+    // the sphere's own point nearest the box, x = 0.8, where it rolls on the face
+    expectVecNear(samples[0].point, Vec3(0.8, 0.2, -0.1));
 }
 
 TEST(NarrowPhase, SphereOutsideBoxEdgeUsesDirectionFromEdge)
