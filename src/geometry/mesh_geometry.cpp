@@ -400,7 +400,11 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
 
 Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed) const
 {
-    const Real coarse = m_grid->sample(pointBody).phi;
+    return distanceLowerBound(pointBody, needed, m_grid->sample(pointBody).phi);
+}
+
+Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed, Real coarse) const
+{
     if (coarse - gridError() >= needed)
     {
         return coarse - gridError();
