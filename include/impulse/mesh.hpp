@@ -102,6 +102,9 @@ class MeshGeometry
     /// A lower bound of phi at a point, equal to phi wherever phi < `needed`: the grid where it
     /// is far enough above, the triangles otherwise. Cheaper than distance(): no normal.
     Real distanceLowerBound(const Vec3& pointBody, Real needed) const;
+    /// The same where the caller has the grid's value at the point already: gridPhi must be
+    /// gridDistance(pointBody).phi (as distance() returns it when not exact).
+    Real distanceLowerBound(const Vec3& pointBody, Real needed, Real gridPhi) const;
     /// Length of the longest feature edge.
     Real longestFeatureEdge() const { return m_longestFeatureEdge; }
     /// How far a grid value may lie above the exact distance (trilinear error of a 1-Lipschitz field).

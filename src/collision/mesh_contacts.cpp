@@ -34,6 +34,8 @@ struct Target
     virtual MeshDistance distance(const Vec3& local, Real threshold) const = 0;
     /// A lower bound of phi, exact where phi < needed.
     virtual Real lowerBound(const Vec3& local, Real needed) const = 0;
+    /// The same, where distance(local, ...) returned a value that is not exact: that value.
+    virtual Real lowerBound(const Vec3& local, Real needed, Real coarse) const = 0;
     virtual void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const = 0;
 
     Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
@@ -45,6 +47,10 @@ struct MeshTarget final : Target
     MeshTarget(const MeshGeometry& m, const Pose& p) : Target(p, m.lower(), m.upper()), mesh(m) {}
     MeshDistance distance(const Vec3& local, Real threshold) const override { return mesh.distance(local, threshold); }
     Real lowerBound(const Vec3& local, Real needed) const override { return mesh.distanceLowerBound(local, needed); }
+    Real lowerBound(const Vec3& local, Real needed, Real coarse) const override
+    {
+        return mesh.distanceLowerBound(local, needed, coarse);
+    }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
         mesh.segmentCrossings(a, b, enterLeave);
@@ -62,6 +68,7 @@ struct AnalyticTarget : Target
         return {sample.phi, sample.gradient, true};
     }
     Real lowerBound(const Vec3& local, Real) const final { return analytic(local).phi; }
+    Real lowerBound(const Vec3& local, Real, Real) const final { return analytic(local).phi; }
 };
 
 struct BoxTarget final : AnalyticTarget
@@ -160,36 +167,99 @@ void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance
     out.push_back({pointWorld, side == Side::PointsOfA ? normal : Vec3(-normal), d.phi});
 }
 
-// The vertices (body frame of their body at `pose`) against the target. Fills `lowerBounds` for the
+// What the edge test knows of a vertex's phi against the target: `value` is a lower bound of phi,
+// -infinity for a sample point. Where the exact bound would cost a distance query it is deferred
+// (`state` says which), and `value` holds a cheaper one that is never above it: most edges are
+// decided by the cheap bounds or by a sample point at one end, and never need the query.
+struct VertexBound
+{
+    enum class State : std::uint8_t
+    {
+        Exact,
+        AboveOutside,   ///< exact bound max(outside, lowerBound); value = outside
+        AboveThreshold, ///< exact bound max(lowerBound, threshold); value = threshold, grid = grid phi
+    };
+    Real value = 0.0;
+    Real grid = 0.0;
+    Vec3 local = Vec3::Zero(); ///< the vertex in the target's frame, for a deferred bound
+    State state = State::Exact;
+};
+
+// The lower bounds of one set of vertices against one target, gathered by verticesAgainst for
+// edgesThrough.
+struct VertexBounds
+{
+    std::vector<VertexBound> vertices;
+    Real edgeReach = 0.0;
+
+    // The exact bound of vertex v, computed once when deferred.
+    Real exact(std::size_t v, const Target& target)
+    {
+        VertexBound& bound = vertices[v];
+        if (bound.state == VertexBound::State::AboveOutside)
+        {
+            bound.value = std::max(bound.value, target.lowerBound(bound.local, edgeReach));
+        }
+        else if (bound.state == VertexBound::State::AboveThreshold)
+        {
+            bound.value = std::max(target.lowerBound(bound.local, edgeReach, bound.grid), bound.value);
+        }
+        bound.state = VertexBound::State::Exact;
+        return bound.value;
+    }
+};
+
+// The vertices (body frame of their body at `pose`) against the target. Fills `bounds` for the
 // edge test: -infinity for the vertices that are sample points, else a lower bound of phi that is
 // exact below `edgeReach` (the longest edge), so that only edges truly near the target are cast.
 void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const Target& target, Real threshold,
-                     Real edgeReach, Side side, std::vector<Real>& lowerBounds, std::vector<ContactPoint>& out)
+                     Real edgeReach, Side side, VertexBounds& bounds, std::vector<ContactPoint>& out)
 {
-    lowerBounds.resize(vertices.size());
+    bounds.vertices.resize(vertices.size());
+    bounds.edgeReach = edgeReach;
     // body frame of the vertices -> target frame in one affine map
     const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
     const Vec3 shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
     for (std::size_t v = 0; v < vertices.size(); ++v)
     {
+        VertexBound& bound = bounds.vertices[v];
         const Vec3 local = rotation * vertices[v] + shift;
         const Real outside = std::sqrt(squaredDistanceToBox(local, target.lower, target.upper));
         if (outside > 0.0 && outside >= threshold)
         {
             // phi >= the distance to the target's bounding box
-            lowerBounds[v] = outside >= edgeReach ? outside : std::max(outside, target.lowerBound(local, edgeReach));
+            bound.value = outside;
+            if (outside >= edgeReach)
+            {
+                bound.state = VertexBound::State::Exact;
+            }
+            else
+            {
+                bound.state = VertexBound::State::AboveOutside; // max(outside, lowerBound) when needed
+                bound.local = local;
+            }
             continue;
         }
         const MeshDistance d = target.distance(local, threshold);
         if (d.phi < threshold)
         {
             addContact(pose.toWorld(vertices[v]), target, d, side, out);
-            lowerBounds[v] = -kInfinity;
+            bound.value = -kInfinity;
+            bound.state = VertexBound::State::Exact;
+        }
+        else if (d.exact)
+        {
+            // not a sample point, so phi >= threshold whatever the grid's error
+            bound.value = std::max(d.phi, threshold);
+            bound.state = VertexBound::State::Exact;
         }
         else
         {
-            // not a sample point, so phi >= threshold whatever the grid's error
-            lowerBounds[v] = std::max(d.exact ? d.phi : target.lowerBound(local, edgeReach), threshold);
+            // max(lowerBound, threshold) when needed; d.phi is the grid's value there
+            bound.value = threshold;
+            bound.grid = d.phi;
+            bound.local = local;
+            bound.state = VertexBound::State::AboveThreshold;
         }
     }
 }
@@ -197,7 +267,7 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const 
 // Edges that pass through the target: the middle of each passage is a sample point.
 template <class Edges>
 void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const Pose& pose, const Target& target,
-                  const std::vector<Real>& lowerBounds, Side side, std::vector<ContactPoint>& out)
+                  VertexBounds& bounds, Side side, std::vector<ContactPoint>& out)
 {
     thread_local std::vector<Real> enterLeave;
     const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
@@ -206,14 +276,26 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const P
     {
         const Vec3& a = vertices[edge[0]];
         const Vec3& b = vertices[edge[1]];
-        const Real reach = lowerBounds[edge[0]] + lowerBounds[edge[1]];
+        const VertexBound& boundA = bounds.vertices[edge[0]];
+        const VertexBound& boundB = bounds.vertices[edge[1]];
+        Real reach = boundA.value + boundB.value;
         if (reach == -kInfinity)
         {
-            continue; // an end is a sample point already
+            continue; // an end is a sample point already (its bound is exact)
         }
         if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
         {
             continue; // phi is 1-Lipschitz: balls of radius phi about the ends cover the edge
+        }
+        if (boundA.state != VertexBound::State::Exact || boundB.state != VertexBound::State::Exact)
+        {
+            // the cheap bounds are below the exact ones, and the sum and square round monotonically:
+            // an edge they cover is covered by the exact bounds too, so only now are those needed
+            reach = bounds.exact(edge[0], target) + bounds.exact(edge[1], target);
+            if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
+            {
+                continue;
+            }
         }
         const Vec3 localA = rotation * a + shift;
         const Vec3 localB = rotation * b + shift;
@@ -346,8 +428,8 @@ void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& 
     {
         return;
     }
-    thread_local std::vector<Real> cornerBounds;
-    thread_local std::vector<Real> vertexBounds;
+    thread_local VertexBounds cornerBounds;
+    thread_local VertexBounds vertexBounds;
     const std::vector<Vec3> corners = boxCornersLocal(a);
     const MeshTarget meshTarget(mesh, poseB);
     const BoxTarget boxTarget(a, poseA);
@@ -383,7 +465,7 @@ void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, cons
             out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi});
         }
     }
-    thread_local std::vector<Real> vertexBounds;
+    thread_local VertexBounds vertexBounds;
     const CapsuleTarget capsuleTarget(a, poseA);
     verticesAgainst(mesh.vertices(), poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
                     vertexBounds, out);
@@ -399,8 +481,8 @@ void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose
     {
         return;
     }
-    thread_local std::vector<Real> boundsA;
-    thread_local std::vector<Real> boundsB;
+    thread_local VertexBounds boundsA;
+    thread_local VertexBounds boundsB;
     const MeshTarget targetA(meshA, poseA);
     const MeshTarget targetB(meshB, poseB);
     verticesAgainst(meshA.vertices(), poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA, boundsA,

@@ -11,13 +11,34 @@
 #include <limits>
 #include <utility>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace impulse
 {
 
 /// Squared distance from p to the box; zero inside.
 inline Real squaredDistanceToBox(const Vec3& p, const Vec3& lower, const Vec3& upper)
 {
+#if defined(__SSE2__)
+    // (lower - p).cwiseMax(p - upper).cwiseMax(Vec3::Zero()).squaredNorm() operation for operation:
+    // Eigen's packet max(a, b) is _mm_max_pd(b, a) (std::max's choice, NaN included), and the sum
+    // is x^2 + y^2, then + z^2. Written out because the compiler branches on the sign of the third
+    // coordinate, which the branch predictor can only guess in a tree search.
+    const __m128d zero = _mm_setzero_pd();
+    const __m128d pXY = _mm_loadu_pd(p.data());
+    const __m128d pZ = _mm_load_sd(p.data() + 2);
+    const __m128d dXY = _mm_max_pd(
+        zero, _mm_max_pd(_mm_sub_pd(pXY, _mm_loadu_pd(upper.data())), _mm_sub_pd(_mm_loadu_pd(lower.data()), pXY)));
+    const __m128d dZ = _mm_max_sd(
+        zero, _mm_max_sd(_mm_sub_sd(pZ, _mm_load_sd(upper.data() + 2)), _mm_sub_sd(_mm_load_sd(lower.data() + 2), pZ)));
+    const __m128d squaresXY = _mm_mul_pd(dXY, dXY);
+    const __m128d sumXY = _mm_add_sd(squaresXY, _mm_unpackhi_pd(squaresXY, squaresXY));
+    return _mm_cvtsd_f64(_mm_add_sd(sumXY, _mm_mul_sd(dZ, dZ)));
+#else
     return (lower - p).cwiseMax(p - upper).cwiseMax(Vec3::Zero()).squaredNorm();
+#endif
 }
 
 /// Clips the segment a + t d, t in [0, 1], to the box (slab test, faces included). Returns false

@@ -388,19 +388,25 @@ MeshDistance MeshGeometry::distanceFrom(const Vec3& pointBody, const SurfacePoin
 
 MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
 {
-    const MeshDistance coarse = m_grid->sample(pointBody);
+    // the grid's gradient only where its value is the answer
+    const SignedDistanceGrid::Stencil coarse = m_grid->stencil(pointBody);
     const Real cell = m_grid->cellSize();
     if (coarse.phi - gridError() >= threshold || coarse.phi < -3.0 * cell)
     {
-        return coarse; // certainly not touching, or deep inside where the grid's normal serves
+        return SignedDistanceGrid::withGradient(coarse); // certainly not touching, or deep inside where
+                                                         // the grid's normal serves
     }
     const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse.phi));
-    return closest.found ? distanceFrom(pointBody, closest) : coarse;
+    return closest.found ? distanceFrom(pointBody, closest) : SignedDistanceGrid::withGradient(coarse);
 }
 
 Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed) const
 {
-    const Real coarse = m_grid->sample(pointBody).phi;
+    return distanceLowerBound(pointBody, needed, m_grid->samplePhi(pointBody));
+}
+
+Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed, Real coarse) const
+{
     if (coarse - gridError() >= needed)
     {
         return coarse - gridError();

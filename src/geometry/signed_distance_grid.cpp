@@ -18,6 +18,7 @@ SignedDistanceGrid::SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower
     {
         m_samples[axis] = static_cast<int>(std::ceil(extent[axis] / m_cell)) + 2 * kPadding + 1;
     }
+    m_far = m_origin + m_cell * Vec3(m_samples[0] - 1, m_samples[1] - 1, m_samples[2] - 1);
     const std::size_t total = static_cast<std::size_t>(m_samples[0]) * m_samples[1] * m_samples[2];
     constexpr Real kFar = std::numeric_limits<Real>::infinity();
     std::vector<Real> distance(total, kFar);
@@ -162,40 +163,51 @@ SignedDistanceGrid::SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower
     }
 }
 
-MeshDistance SignedDistanceGrid::interpolate(const Vec3& p) const
+SignedDistanceGrid::Stencil SignedDistanceGrid::stencil(const Vec3& p) const
 {
-    const Vec3 u = (p - m_origin) / m_cell;
-    int cell[3];
-    Real f[3];
+    // interpolation in the grid box; outside (at least kPadding cells from the surface) the way to
+    // the box is added
+    const Vec3 clamped = p.cwiseMax(m_origin).cwiseMin(m_far);
+    const Vec3 u = (clamped - m_origin) / m_cell;
+    Stencil result;
+    std::array<int, 3> cell{};
     for (int axis = 0; axis < 3; ++axis)
     {
-        cell[axis] = std::clamp(static_cast<int>(std::floor(u[axis])), 0, m_samples[axis] - 2);
-        f[axis] = u[axis] - cell[axis];
+        // u >= 0, where truncation is floor
+        cell[axis] = std::clamp(static_cast<int>(u[axis]), 0, m_samples[axis] - 2);
+        result.fraction[axis] = u[axis] - cell[axis];
     }
-    const auto at = [&](int di, int dj, int dk) { return m_phi[index(cell[0] + di, cell[1] + dj, cell[2] + dk)]; };
-    const Real c000 = at(0, 0, 0), c100 = at(1, 0, 0), c010 = at(0, 1, 0), c110 = at(1, 1, 0);
-    const Real c001 = at(0, 0, 1), c101 = at(1, 0, 1), c011 = at(0, 1, 1), c111 = at(1, 1, 1);
-    const Real gx = 1.0 - f[0], gy = 1.0 - f[1], gz = 1.0 - f[2];
-
-    MeshDistance result;
-    result.phi = gz * (gy * (gx * c000 + f[0] * c100) + f[1] * (gx * c010 + f[0] * c110)) +
-                 f[2] * (gy * (gx * c001 + f[0] * c101) + f[1] * (gx * c011 + f[0] * c111));
-    const Vec3 gradient(
-        gz * (gy * (c100 - c000) + f[1] * (c110 - c010)) + f[2] * (gy * (c101 - c001) + f[1] * (c111 - c011)),
-        gz * (gx * (c010 - c000) + f[0] * (c110 - c100)) + f[2] * (gx * (c011 - c001) + f[0] * (c111 - c101)),
-        gy * (gx * (c001 - c000) + f[0] * (c101 - c100)) + f[1] * (gx * (c011 - c010) + f[0] * (c111 - c110)));
-    const Real length = gradient.norm();
-    result.gradient = length > 0.0 ? Vec3(gradient / length) : Vec3::UnitZ();
+    const std::size_t strideJ = static_cast<std::size_t>(m_samples[0]);
+    const std::size_t strideK = strideJ * static_cast<std::size_t>(m_samples[1]);
+    const Real* c = m_phi.data() + index(cell[0], cell[1], cell[2]);
+    auto& corner = result.corner;
+    corner = {c[0],       c[1],           c[strideJ],           c[strideJ + 1],
+              c[strideK], c[strideK + 1], c[strideK + strideJ], c[strideK + strideJ + 1]};
+    const Real f0 = result.fraction[0];
+    const Real f1 = result.fraction[1];
+    const Real f2 = result.fraction[2];
+    const Real gx = 1.0 - f0, gy = 1.0 - f1, gz = 1.0 - f2;
+    result.phi = gz * (gy * (gx * corner[0] + f0 * corner[1]) + f1 * (gx * corner[2] + f0 * corner[3])) +
+                 f2 * (gy * (gx * corner[4] + f0 * corner[5]) + f1 * (gx * corner[6] + f0 * corner[7]));
+    result.phi += (p - clamped).norm();
     return result;
 }
 
-MeshDistance SignedDistanceGrid::sample(const Vec3& p) const
+MeshDistance SignedDistanceGrid::withGradient(const Stencil& stencil)
 {
-    const Vec3 far = m_origin + m_cell * Vec3(m_samples[0] - 1, m_samples[1] - 1, m_samples[2] - 1);
-    const Vec3 clamped = p.cwiseMax(m_origin).cwiseMin(far);
-    MeshDistance result = interpolate(clamped);
-    // outside the grid (at least kPadding cells from the surface): add the way to the grid box
-    result.phi += (p - clamped).norm();
+    const auto& [c000, c100, c010, c110, c001, c101, c011, c111] = stencil.corner;
+    const Real f0 = stencil.fraction[0];
+    const Real f1 = stencil.fraction[1];
+    const Real f2 = stencil.fraction[2];
+    const Real gx = 1.0 - f0, gy = 1.0 - f1, gz = 1.0 - f2;
+    MeshDistance result;
+    result.phi = stencil.phi;
+    const Vec3 gradient(gz * (gy * (c100 - c000) + f1 * (c110 - c010)) + f2 * (gy * (c101 - c001) + f1 * (c111 - c011)),
+                        gz * (gx * (c010 - c000) + f0 * (c110 - c100)) + f2 * (gx * (c011 - c001) + f0 * (c111 - c101)),
+                        gy * (gx * (c001 - c000) + f0 * (c101 - c100)) +
+                            f1 * (gx * (c011 - c010) + f0 * (c111 - c110)));
+    const Real length = gradient.norm();
+    result.gradient = length > 0.0 ? Vec3(gradient / length) : Vec3::UnitZ();
     return result;
 }
 

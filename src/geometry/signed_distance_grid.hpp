@@ -20,7 +20,21 @@ class SignedDistanceGrid
     /// flood fill from it, so a far sample can never take the wrong side.
     SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower, const Vec3& upper, int resolution);
 
-    MeshDistance sample(const Vec3& p) const;
+    /// What interpolation at a point reads: the eight corner values of its cell, its position in
+    /// the cell, and phi there (with the way to the grid box added outside it).
+    struct Stencil
+    {
+        Real phi = 0.0;
+        std::array<Real, 8> corner{}; ///< c000, c100, c010, c110, c001, c101, c011, c111
+        std::array<Real, 3> fraction{};
+    };
+
+    MeshDistance sample(const Vec3& p) const { return withGradient(stencil(p)); }
+    /// phi alone, as sample(p).phi: no gradient.
+    Real samplePhi(const Vec3& p) const { return stencil(p).phi; }
+    Stencil stencil(const Vec3& p) const;
+    /// phi and its unit gradient from a stencil: the same as sample() at its point.
+    static MeshDistance withGradient(const Stencil& stencil);
 
     Real cellSize() const { return m_cell; }
     const std::array<int, 3>& samples() const { return m_samples; }
@@ -35,10 +49,9 @@ class SignedDistanceGrid
                    (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_samples[1]) * static_cast<std::size_t>(k));
     }
     Vec3 position(int i, int j, int k) const { return m_origin + m_cell * Vec3(i, j, k); }
-    /// Trilinear value and gradient at a point inside the grid box.
-    MeshDistance interpolate(const Vec3& p) const;
 
     Vec3 m_origin = Vec3::Zero();
+    Vec3 m_far = Vec3::Zero(); ///< the last sample, opposite m_origin
     Real m_cell = 1.0;
     std::array<int, 3> m_samples{};
     std::vector<Real> m_phi;

@@ -31,9 +31,9 @@ Real cornerAngle(const Vec3& at, const Vec3& next, const Vec3& previous)
     return std::atan2(u.cross(w).norm(), u.dot(w));
 }
 
-} // namespace
-
-TrianglePoint closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+// closestPointOnTriangle, inlined into the searches (the compiler would call it)
+[[gnu::always_inline]] inline TrianglePoint closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b,
+                                                              const Vec3& c)
 {
     // Voronoi regions of the triangle, tested corner, edge, then face (Ericson, Real-Time Collision
     // Detection, sec. 5.1.5), from dot products of the edges with the corner-to-point vectors.
@@ -77,6 +77,13 @@ TrianglePoint closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b
     }
     const Real scale = 1.0 / (va + vb + vc);
     return {a + ab * (vb * scale) + ac * (vc * scale), TriangleFeature::Face};
+}
+
+} // namespace
+
+TrianglePoint closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+    return closestOnTriangle(p, a, b, c);
 }
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
@@ -125,6 +132,12 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
     }
     m_nodes.reserve(2 * m_triangles.size() / kLeafSize + 2);
     buildNode(0, static_cast<std::uint32_t>(m_order.size()), centroids);
+    m_leafTriangles.reserve(m_order.size());
+    for (const std::uint32_t t : m_order)
+    {
+        const auto& tri = m_triangles[t];
+        m_leafTriangles.push_back({m_vertices[tri[0]], m_vertices[tri[1]], m_vertices[tri[2]], t});
+    }
 }
 
 // Builds the subtree over m_order[begin, end) and returns its index: a leaf for a few triangles, else
@@ -192,32 +205,38 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
     SurfacePoint best;
     Real bestSquared = maxDistance * maxDistance;
     TriangleFeature bestFeature = TriangleFeature::Face;
-    // depth-first, nearer child first, pruning boxes farther than the best so far
-    std::uint32_t stack[64];
+    // Depth-first, nearer child first, pruning boxes not nearer than the best so far. An entry keeps
+    // the squared distance to its box, computed when its parent compared the two children by it, so
+    // that it is not computed again when the entry is popped and tested against the best.
+    struct Entry
+    {
+        std::uint32_t node;
+        Real squared;
+    };
+    Entry stack[64];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, squaredDistanceToBox(p, m_nodes[0].lower, m_nodes[0].upper)};
     while (top > 0)
     {
-        const Node& node = m_nodes[stack[--top]];
-        if (squaredDistanceToBox(p, node.lower, node.upper) >= bestSquared)
+        const Entry entry = stack[--top];
+        if (entry.squared >= bestSquared)
         {
             continue;
         }
+        const Node& node = m_nodes[entry.node];
         if (node.count > 0)
         {
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
             {
-                const std::uint32_t t = m_order[i];
-                const auto& tri = m_triangles[t];
-                const TrianglePoint candidate =
-                    closestPointOnTriangle(p, m_vertices[tri[0]], m_vertices[tri[1]], m_vertices[tri[2]]);
+                const LeafTriangle& triangle = m_leafTriangles[i];
+                const TrianglePoint candidate = closestOnTriangle(p, triangle.a, triangle.b, triangle.c);
                 const Real squared = (p - candidate.point).squaredNorm();
                 if (squared < bestSquared)
                 {
                     bestSquared = squared;
                     best.found = true;
                     best.point = candidate.point;
-                    best.triangle = t;
+                    best.triangle = triangle.index;
                     bestFeature = candidate.feature;
                 }
             }
@@ -225,17 +244,14 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
         }
         const Real toLeft = squaredDistanceToBox(p, m_nodes[node.left].lower, m_nodes[node.left].upper);
         const Real toRight = squaredDistanceToBox(p, m_nodes[node.right].lower, m_nodes[node.right].upper);
-        // push the farther child first so the nearer is searched first
-        if (toLeft <= toRight)
-        {
-            stack[top++] = node.right;
-            stack[top++] = node.left;
-        }
-        else
-        {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
-        }
+        // push the farther child first so the nearer is searched first (selects, not branches: which
+        // is nearer is a coin toss to the branch predictor)
+        const bool leftFirst = toLeft <= toRight;
+        stack[top].node = leftFirst ? node.right : node.left;
+        stack[top].squared = leftFirst ? toRight : toLeft;
+        stack[top + 1].node = leftFirst ? node.left : node.right;
+        stack[top + 1].squared = leftFirst ? toLeft : toRight;
+        top += 2;
     }
     if (best.found)
     {
@@ -260,18 +276,16 @@ void TriangleBvh::trianglesNear(const Vec3& p, Real radius, std::vector<std::uin
 {
     out.clear();
     const Real squaredRadius = radius * radius;
-    forEachTriangleIn(
-        [&](const Vec3& lower, const Vec3& upper) { return squaredDistanceToBox(p, lower, upper) < squaredRadius; },
-        [&](std::uint32_t t)
-        {
-            const auto& tri = m_triangles[t];
-            const Vec3 closest =
-                closestPointOnTriangle(p, m_vertices[tri[0]], m_vertices[tri[1]], m_vertices[tri[2]]).point;
-            if ((p - closest).squaredNorm() < squaredRadius)
-            {
-                out.push_back(t);
-            }
-        });
+    forEachTriangleIn([&](const Vec3& lower, const Vec3& upper)
+                      { return squaredDistanceToBox(p, lower, upper) < squaredRadius; },
+                      [&](const LeafTriangle& triangle)
+                      {
+                          const Vec3 closest = closestOnTriangle(p, triangle.a, triangle.b, triangle.c).point;
+                          if ((p - closest).squaredNorm() < squaredRadius)
+                          {
+                              out.push_back(triangle.index);
+                          }
+                      });
 }
 
 void TriangleBvh::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<SegmentCrossing>& out) const
@@ -279,13 +293,12 @@ void TriangleBvh::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Seg
     out.clear();
     const Vec3 direction = b - a;
     forEachTriangleIn([&](const Vec3& lower, const Vec3& upper) { return segmentMeetsBox(a, direction, lower, upper); },
-                      [&](std::uint32_t t)
+                      [&](const LeafTriangle& triangle)
                       {
                           // Moller-Trumbore: solve a + t d = v0 + u e1 + v e2 by Cramer's rule
-                          const auto& tri = m_triangles[t];
-                          const Vec3& v0 = m_vertices[tri[0]];
-                          const Vec3 e1 = m_vertices[tri[1]] - v0;
-                          const Vec3 e2 = m_vertices[tri[2]] - v0;
+                          const Vec3& v0 = triangle.a;
+                          const Vec3 e1 = triangle.b - v0;
+                          const Vec3 e2 = triangle.c - v0;
                           const Vec3 pvec = direction.cross(e2);
                           const Real det = e1.dot(pvec); // = -direction . (e1 x e2): positive when entering
                           if (det == 0.0)

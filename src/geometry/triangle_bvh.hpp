@@ -87,8 +87,18 @@ class TriangleBvh
         std::uint32_t count = 0; ///< leaf: number of triangles; 0 for an inner node
     };
 
-    /// Depth first, left before right: visit(t) for each triangle of every leaf reached through
-    /// boxes that enters(lower, upper) accepts.
+    /// A triangle's corners stored with its leaf, so that a leaf's triangles are read in one sweep
+    /// instead of through m_order, m_triangles and m_vertices.
+    struct LeafTriangle
+    {
+        Vec3 a;
+        Vec3 b;
+        Vec3 c;
+        std::uint32_t index = 0; ///< into m_triangles
+    };
+
+    /// Depth first, left before right: visit(triangle) for each triangle of every leaf reached
+    /// through boxes that enters(lower, upper) accepts.
     template <class Enters, class Visit> void forEachTriangleIn(Enters enters, Visit visit) const
     {
         std::uint32_t stack[64];
@@ -109,7 +119,7 @@ class TriangleBvh
             }
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
             {
-                visit(m_order[i]);
+                visit(m_leafTriangles[i]);
             }
         }
     }
@@ -123,6 +133,7 @@ class TriangleBvh
     std::vector<std::array<Vec3, 3>> m_edgeNormals; ///< per triangle edge, sum of the two face normals
     std::vector<Vec3> m_vertexNormals;              ///< angle-weighted sums of incident face normals
     std::vector<std::uint32_t> m_order;             ///< triangle indices, leaves contiguous
+    std::vector<LeafTriangle> m_leafTriangles;      ///< the triangles of m_order, in that order
     std::vector<Node> m_nodes;                      ///< m_nodes[0] is the root
 };
 

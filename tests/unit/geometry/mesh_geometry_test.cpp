@@ -282,6 +282,27 @@ TEST(MeshDistance, OutsideTheGridDistanceGrowsWithTheWayToTheGrid)
     }
 }
 
+TEST(MeshDistance, LowerBoundIsExactBelowWhatIsNeededAndTakesAKnownGridValue)
+{
+    const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
+    const Real cell = torus->cellSize();
+    for (const Vec3& p : samplePoints(Vec3(0.25 + 3.0 * cell, 0.25 + 3.0 * cell, 0.05 + 3.0 * cell), 5000, 4))
+    {
+        const Real exact = torus->exactDistance(p).phi;
+        for (const Real needed : {0.0, 0.01, 0.05})
+        {
+            const Real bound = torus->distanceLowerBound(p, needed);
+            EXPECT_LE(bound, exact + 1e-15) << p.transpose();
+            if (exact < needed)
+            {
+                EXPECT_NEAR(bound, exact, 1e-15) << p.transpose();
+            }
+            // the caller's grid value spares a second sample and changes nothing
+            EXPECT_EQ(torus->distanceLowerBound(p, needed, torus->gridDistance(p).phi), bound) << p.transpose();
+        }
+    }
+}
+
 TEST(MeshDistance, SegmentCrossingsOfABoxAreItsFaces)
 {
     const auto box = MeshGeometry::build(boxMesh(Vec3(0.3, 0.2, 0.1), 3));
