@@ -65,8 +65,7 @@ std::uint64_t mixCell(std::int64_t x, std::int64_t y, std::int64_t z)
 
 } // namespace
 
-void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads,
-                           std::vector<BodyPair>& pairs)
+void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads, std::vector<BodyPair>& pairs)
 {
     pairs.clear();
     m_bounds.resize(bodies.size());

@@ -33,8 +33,7 @@ inline int resolveThreadCount(int requested)
 
 /// Calls work(i, thread) for i in [0, count), `thread` in [0, threads) naming the caller's scratch.
 /// Iterations are handed out one at a time (they may differ widely in cost, as islands do).
-template <class Work>
-void parallelFor(int threads, std::size_t count, Work&& work)
+template <class Work> void parallelFor(int threads, std::size_t count, Work&& work)
 {
 #ifdef IMPULSE_HAVE_OPENMP
     if (threads > 1 && count > 1)
@@ -57,8 +56,7 @@ void parallelFor(int threads, std::size_t count, Work&& work)
 
 /// As parallelFor, for many cheap iterations of equal cost (per-body updates): handed out in
 /// contiguous blocks, one per thread.
-template <class Work>
-void parallelForEach(int threads, std::size_t count, Work&& work)
+template <class Work> void parallelForEach(int threads, std::size_t count, Work&& work)
 {
 #ifdef IMPULSE_HAVE_OPENMP
     if (threads > 1 && count > 256)

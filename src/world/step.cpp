@@ -257,7 +257,8 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
                     // each island sweeps until a sweep applies nothing to it, or the cap
                     for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
                     {
-                        const int impulses = sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], settings);
+                        const int impulses =
+                            sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], settings);
                         applied[i] += impulses;
                         ++sweeps[i];
                         if (impulses == 0)
@@ -321,7 +322,8 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     newVelocity.predictWithAcceleration = true;
     predictAll(oldVelocity);
     probePoses.resize(bodies.size());
-    parallelForEach(threads, bodies.size(), [&](std::size_t i) { probePoses[i] = predictedPose(bodies[i], newVelocity); });
+    parallelForEach(threads, bodies.size(),
+                    [&](std::size_t i) { probePoses[i] = predictedPose(bodies[i], newVelocity); });
 
     // every probe of every pair at once: each reads the predicted poses and writes its own slot
     pairProbes.assign(pairs.size(), 0);
@@ -336,17 +338,19 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
                     {
                         const Real before = leastPhi(a, a.predicted, b, options.contactThickness, points);
                         found |= before < options.contactThickness ? kTouching : 0;
-                        found |= std::min(leastPhi(a, probePoses[pairs[k].a], b, 0.0, points), 0.0) < std::min(before, 0.0)
-                                     ? kRestsOnB
-                                     : 0;
+                        found |=
+                            std::min(leastPhi(a, probePoses[pairs[k].a], b, 0.0, points), 0.0) < std::min(before, 0.0)
+                                ? kRestsOnB
+                                : 0;
                     }
                     if (b.dynamic)
                     {
                         const Real before = leastPhi(b, b.predicted, a, options.contactThickness, points);
                         found |= before < options.contactThickness ? kTouching : 0;
-                        found |= std::min(leastPhi(b, probePoses[pairs[k].b], a, 0.0, points), 0.0) < std::min(before, 0.0)
-                                     ? kRestsOnA
-                                     : 0;
+                        found |=
+                            std::min(leastPhi(b, probePoses[pairs[k].b], a, 0.0, points), 0.0) < std::min(before, 0.0)
+                                ? kRestsOnA
+                                : 0;
                     }
                     pairProbes[k] = found;
                 });
@@ -432,8 +436,7 @@ void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& se
                     for (int sweep = 1; sweep <= options.contactIterations; ++sweep)
                     {
                         // restitution ramps -1 + 1/n, ..., 0: early sweeps remove only part of each approach
-                        const Real eps =
-                            -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
+                        const Real eps = -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
                         const int impulses =
                             sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], eps, false, settings);
                         applied[i] += impulses;
@@ -459,7 +462,8 @@ void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
                 {
-                    applied[i] = sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], 0.0, true, settings);
+                    applied[i] =
+                        sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], 0.0, true, settings);
                     for (const std::uint32_t b : islands[i].bodies)
                     {
                         bodies[b].frozen = false;
@@ -579,7 +583,8 @@ void WorldImpl::updatePositions(const StepOptions& options)
                         {
                             return;
                         }
-                        const Pose next = advancePose(body.pose(), body.linearVelocity, body.angularVelocity, options.dt);
+                        const Pose next =
+                            advancePose(body.pose(), body.linearVelocity, body.angularVelocity, options.dt);
                         body.position = next.position;
                         body.orientation = next.orientation;
                         body.rotation = next.rotation;

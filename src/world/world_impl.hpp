@@ -28,9 +28,9 @@ struct Island
     /// The order of the contact pass and shock propagation, fixed once the levels are known.
     struct Level
     {
-        std::uint32_t firstBody = 0, endBody = 0;       ///< range of levelBodies
-        std::uint32_t firstPair = 0, endPair = 0;       ///< range of twoWayPairs
-        std::uint32_t firstFrozen = 0, endFrozen = 0;   ///< range of frozen
+        std::uint32_t firstBody = 0, endBody = 0;     ///< range of levelBodies
+        std::uint32_t firstPair = 0, endPair = 0;     ///< range of twoWayPairs
+        std::uint32_t firstFrozen = 0, endFrozen = 0; ///< range of frozen
     };
     std::vector<Level> levels;
     std::vector<std::uint32_t> levelBodies;  ///< bodies of each level that rest on something, ascending

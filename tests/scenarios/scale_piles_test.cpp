@@ -19,7 +19,6 @@ TEST(ReferenceScene12, ThousandCubesStayInTheBoxWithoutOverlaps)
     expectPileStaysInTheBoxWithoutOverlaps("box_pile_1000", 0.1);
 }
 
-
 TEST(ReferenceScene11, TenThousandSpheresStayInTheBoxWithoutOverlaps)
 {
     expectPileStaysInTheBoxWithoutOverlaps("sphere_pile_10000", 0.1);

@@ -44,7 +44,8 @@ inline void expectPileStaysInTheBoxWithoutOverlaps(const std::string& name, Real
                  for (const BodyId body : scene.dynamicBodies)
                  {
                      const Vec3 x = world.state(body).position;
-                     const bool inside = std::abs(x.x()) < 2.0 && std::abs(x.y()) < 2.0 && x.z() > 0.0 && x.z() < wallTop;
+                     const bool inside =
+                         std::abs(x.x()) < 2.0 && std::abs(x.y()) < 2.0 && x.z() > 0.0 && x.z() < wallTop;
                      escaped += inside ? 0 : 1;
                  }
                  ASSERT_EQ(escaped, 0) << name << ": bodies out of the box at t = " << t << " s";
