@@ -9,30 +9,8 @@
 # listing all of them, so one broken check does not hide the others.
 cmake_minimum_required(VERSION 3.21)
 
-foreach(variable IMPULSE SCENES WORK)
-    if(NOT DEFINED ${variable} OR "${${variable}}" STREQUAL "")
-        message(FATAL_ERROR "bench_test.cmake: pass -D${variable}=... (see the header of this file)")
-    endif()
-endforeach()
-if(NOT EXISTS "${IMPULSE}")
-    message(FATAL_ERROR "bench_test.cmake: no executable at IMPULSE=${IMPULSE}")
-endif()
-
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-
-set(failures "")
-
-function(check_failed what)
-    message("FAIL: ${what}")
-    string(REPLACE ";" "," what "${what}")
-    list(APPEND failures "${what}")
-    set(failures "${failures}" PARENT_SCOPE)
-endfunction()
-
-function(check_passed what)
-    message(STATUS "ok: ${what}")
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
+start_checks(bench_test.cmake IMPULSE SCENES WORK)
 
 # Runs impulse in WORK (not the source tree, so that relative scene paths must be resolved) with
 # the given arguments; sets run_rc, run_out, run_err and run_command.
@@ -53,14 +31,6 @@ macro(expect_success)
         check_passed("${run_command} exits 0")
     else()
         check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-    endif()
-endmacro()
-
-macro(exited_with_error result)
-    if(run_rc MATCHES "^[0-9]+$" AND NOT run_rc EQUAL 0)
-        set(${result} TRUE)
-    else()
-        set(${result} FALSE)
     endif()
 endmacro()
 
@@ -258,9 +228,4 @@ foreach(option --steps --warm-up --threads --json --scenes --no-progress)
     endif()
 endforeach()
 
-list(LENGTH failures failure_count)
-if(failure_count GREATER 0)
-    list(JOIN failures "\n  " failure_text)
-    message(FATAL_ERROR "${failure_count} bench check(s) failed:\n  ${failure_text}")
-endif()
-message(STATUS "all bench checks passed")
+finish_checks("bench")

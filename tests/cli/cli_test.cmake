@@ -9,31 +9,8 @@
 # listing all of them, so one broken check does not hide the others.
 cmake_minimum_required(VERSION 3.21)
 
-foreach(variable IMPULSE SCENES DATA WORK)
-    if(NOT DEFINED ${variable} OR "${${variable}}" STREQUAL "")
-        message(FATAL_ERROR "cli_test.cmake: pass -D${variable}=... (see the header of this file)")
-    endif()
-endforeach()
-if(NOT EXISTS "${IMPULSE}")
-    message(FATAL_ERROR "cli_test.cmake: no executable at IMPULSE=${IMPULSE}")
-endif()
-
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-
-set(failures "")
-
-# Records a failed check (in the caller's `failures`) and carries on.
-function(check_failed what)
-    message("FAIL: ${what}")
-    string(REPLACE ";" "," what "${what}")
-    list(APPEND failures "${what}")
-    set(failures "${failures}" PARENT_SCOPE)
-endfunction()
-
-function(check_passed what)
-    message(STATUS "ok: ${what}")
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
+start_checks(cli_test.cmake IMPULSE SCENES DATA WORK)
 
 # Runs impulse with the given arguments; sets run_rc, run_out and run_err. A timeout guards the
 # "never hangs" promise: every run below simulates at most half a second.
@@ -46,16 +23,6 @@ macro(run_impulse)
         TIMEOUT 120)
     string(STRIP "${run_err}" run_err)
     string(JOIN " " run_command "impulse" ${ARGN})
-endmacro()
-
-# True (in `result`) when run_rc is an exit code other than 0, not a signal or a timeout, which
-# execute_process reports as text ("Child aborted", "Segmentation fault", ...).
-macro(exited_with_error result)
-    if(run_rc MATCHES "^[0-9]+$" AND NOT run_rc EQUAL 0)
-        set(${result} TRUE)
-    else()
-        set(${result} FALSE)
-    endif()
 endmacro()
 
 # Counts the data rows of a trajectory CSV into `rows` after checking its header and that every
@@ -266,9 +233,4 @@ else()
     check_failed("--shock-propagation maybe: exit ${run_rc}, stderr: ${run_err}")
 endif()
 
-list(LENGTH failures failure_count)
-if(failure_count GREATER 0)
-    list(JOIN failures "\n  " failure_text)
-    message(FATAL_ERROR "${failure_count} CLI check(s) failed:\n  ${failure_text}")
-endif()
-message(STATUS "all CLI checks passed")
+finish_checks("CLI")

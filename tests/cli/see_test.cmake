@@ -9,26 +9,8 @@
 # Every check runs; the script ends with FATAL_ERROR listing the failures.
 cmake_minimum_required(VERSION 3.21)
 
-foreach(variable IMPULSE PROBE SCENES WORK)
-    if(NOT DEFINED ${variable} OR "${${variable}}" STREQUAL "")
-        message(FATAL_ERROR "see_test.cmake: pass -D${variable}=... (see the header of this file)")
-    endif()
-endforeach()
-
-file(REMOVE_RECURSE "${WORK}")
-file(MAKE_DIRECTORY "${WORK}")
-set(failures "")
-
-function(check_failed what)
-    message("FAIL: ${what}")
-    string(REPLACE ";" "," what "${what}")
-    list(APPEND failures "${what}")
-    set(failures "${failures}" PARENT_SCOPE)
-endfunction()
-
-function(check_passed what)
-    message(STATUS "ok: ${what}")
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
+start_checks(see_test.cmake IMPULSE PROBE SCENES WORK)
 
 macro(run_impulse)
     execute_process(COMMAND "${IMPULSE}" ${ARGN} RESULT_VARIABLE run_rc OUTPUT_VARIABLE run_out
@@ -180,9 +162,4 @@ if(EXISTS "${WORK}/late.png" OR EXISTS "${WORK}/refused.png")
     check_failed("a refused render left a picture behind")
 endif()
 
-list(LENGTH failures failure_count)
-if(failure_count GREATER 0)
-    list(JOIN failures "\n  " failure_text)
-    message(FATAL_ERROR "${failure_count} check(s) failed:\n  ${failure_text}")
-endif()
-message(STATUS "all plot, render and view checks passed")
+finish_checks("plot, render and view")

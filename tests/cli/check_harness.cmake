@@ -1,0 +1,54 @@
+# SPDX-License-Identifier: MIT
+# What the command-line test scripts share: their required -D variables, a fresh scratch folder,
+# and checks that record failures and carry on, so that one broken check does not hide the others.
+#
+#   include(check_harness.cmake)
+#   start_checks(<script name> <required variable>...)  # then check_passed / check_failed ...
+#   finish_checks(<what was checked>)                   # FATAL_ERROR listing every failure
+
+# Refuses to run without the script's -D variables, then empties WORK and the failure list.
+macro(start_checks script)
+    foreach(variable ${ARGN})
+        if(NOT DEFINED ${variable} OR "${${variable}}" STREQUAL "")
+            message(FATAL_ERROR "${script}: pass -D${variable}=... (see the header of this file)")
+        endif()
+    endforeach()
+    if(DEFINED IMPULSE AND NOT EXISTS "${IMPULSE}")
+        message(FATAL_ERROR "${script}: no executable at IMPULSE=${IMPULSE}")
+    endif()
+    file(REMOVE_RECURSE "${WORK}")
+    file(MAKE_DIRECTORY "${WORK}")
+    set(failures "")
+endmacro()
+
+# Records a failed check (in the caller's `failures`) and carries on.
+function(check_failed what)
+    message("FAIL: ${what}")
+    string(REPLACE ";" "," what "${what}")
+    list(APPEND failures "${what}")
+    set(failures "${failures}" PARENT_SCOPE)
+endfunction()
+
+function(check_passed what)
+    message(STATUS "ok: ${what}")
+endfunction()
+
+# True (in `result`) when run_rc is an exit code other than 0, not a signal or a timeout, which
+# execute_process reports as text ("Child aborted", "Segmentation fault", ...).
+macro(exited_with_error result)
+    if(run_rc MATCHES "^[0-9]+$" AND NOT run_rc EQUAL 0)
+        set(${result} TRUE)
+    else()
+        set(${result} FALSE)
+    endif()
+endmacro()
+
+# Ends the script: FATAL_ERROR listing every failed check, or one line saying all passed.
+macro(finish_checks what)
+    list(LENGTH failures failure_count)
+    if(failure_count GREATER 0)
+        list(JOIN failures "\n  " failure_text)
+        message(FATAL_ERROR "${failure_count} ${what} check(s) failed:\n  ${failure_text}")
+    endif()
+    message(STATUS "all ${what} checks passed")
+endmacro()
