@@ -192,13 +192,10 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
         m_bucketStart[b + 1] += m_bucketStart[b];
     }
     m_sorted.resize(m_entries.size());
+    m_bucketFill.assign(m_bucketStart.begin(), m_bucketStart.end() - 1);
+    for (const CellEntry& entry : m_entries)
     {
-        std::vector<std::uint32_t>& next = m_bucketFill;
-        next.assign(m_bucketStart.begin(), m_bucketStart.end() - 1);
-        for (const CellEntry& entry : m_entries)
-        {
-            m_sorted[next[entry.bucket]++] = entry;
-        }
+        m_sorted[m_bucketFill[entry.bucket]++] = entry;
     }
     for (std::size_t b = 0; b < buckets; ++b)
     {

@@ -388,7 +388,7 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
     return applied;
 }
 
-int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Real eps, const PassSettings& settings,
+int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
                       std::vector<ContactPoint>& scratch)
 {
     if (supports.size() > 1)

@@ -4,6 +4,7 @@
 #include "collision/contact.hpp"
 #include "dynamics/rigid_body.hpp"
 
+#include <span>
 #include <vector>
 
 namespace impulse
@@ -61,7 +62,7 @@ struct Support
 /// the supports are frozen): its approaching points on all supports are first resolved as one patch
 /// with restitution eps, so a lintel on two stacks or a block on two blocks is held by both at once;
 /// if that patch does not stick, each support is resolved as a pair. Returns the impulses applied.
-int resolveOnSupports(RigidBody& body, const std::vector<Support>& supports, Real eps, const PassSettings& settings,
+int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
                       std::vector<ContactPoint>& scratch);
 
 } // namespace impulse

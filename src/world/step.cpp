@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <span>
 
 namespace impulse
 {
@@ -331,27 +332,23 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
                 [&](std::size_t k, int thread)
                 {
                     std::vector<ContactPoint>& points = scratch[static_cast<std::size_t>(thread)].points;
-                    const RigidBody& a = bodies[pairs[k].a];
-                    const RigidBody& b = bodies[pairs[k].b];
-                    std::uint8_t found = 0;
-                    if (a.dynamic)
+                    // advance `probe` alone with its new velocity: deeper into `other` means it
+                    // rests on it; within the contact thickness at the old poses means touching
+                    const auto probeOn = [&](std::uint32_t p, std::uint32_t other, PairProbe restsOn)
                     {
-                        const Real before = leastPhi(a, a.predicted, b, options.contactThickness, points);
-                        found |= before < options.contactThickness ? kTouching : 0;
-                        found |=
-                            std::min(leastPhi(a, probePoses[pairs[k].a], b, 0.0, points), 0.0) < std::min(before, 0.0)
-                                ? kRestsOnB
-                                : 0;
-                    }
-                    if (b.dynamic)
-                    {
-                        const Real before = leastPhi(b, b.predicted, a, options.contactThickness, points);
-                        found |= before < options.contactThickness ? kTouching : 0;
-                        found |=
-                            std::min(leastPhi(b, probePoses[pairs[k].b], a, 0.0, points), 0.0) < std::min(before, 0.0)
-                                ? kRestsOnA
-                                : 0;
-                    }
+                        const RigidBody& probe = bodies[p];
+                        if (!probe.dynamic)
+                        {
+                            return std::uint8_t{0};
+                        }
+                        const Real before =
+                            leastPhi(probe, probe.predicted, bodies[other], options.contactThickness, points);
+                        const Real after = leastPhi(probe, probePoses[p], bodies[other], 0.0, points);
+                        return static_cast<std::uint8_t>((before < options.contactThickness ? kTouching : 0) |
+                                                         (std::min(after, 0.0) < std::min(before, 0.0) ? restsOn : 0));
+                    };
+                    std::uint8_t found = probeOn(pairs[k].a, pairs[k].b, kRestsOnB);
+                    found |= probeOn(pairs[k].b, pairs[k].a, kRestsOnA);
                     pairProbes[k] = found;
                 });
     supportEdges.clear();
@@ -559,9 +556,9 @@ int WorldImpl::sweepLevels(const Island& island, ThreadScratch& local, Real eps,
         }
         for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
         {
-            local.supports.assign(island.supports.begin() + island.supportStart[n],
-                                  island.supports.begin() + island.supportStart[n + 1]);
-            applied += resolveOnSupports(bodies[island.levelBodies[n]], local.supports, eps, settings, local.points);
+            const std::span<const Support> supports(island.supports.data() + island.supportStart[n],
+                                                    island.supportStart[n + 1] - island.supportStart[n]);
+            applied += resolveOnSupports(bodies[island.levelBodies[n]], supports, eps, settings, local.points);
         }
         for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
         {

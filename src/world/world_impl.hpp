@@ -44,7 +44,6 @@ struct Island
 struct ThreadScratch
 {
     std::vector<ContactPoint> points;
-    std::vector<Support> supports;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> supportOf; ///< (body, pair), sorted
 };
 
