@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "bench_command.hpp"
 
+#include "option_checks.hpp"
+
 #include <impulse/io/scene.hpp>
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -368,26 +369,6 @@ nlohmann::ordered_json resultJson(const Result& r)
             {"total_seconds", r.totalSeconds},
             {"state_hash", hex(r.hash)},
             {"kinetic_energy", r.kineticEnergy}};
-}
-
-/// Accepts a whole number from `low` to `high`, and names the option and the text otherwise
-/// (CLI::Range alone calls "abc" a value out of range).
-CLI::Validator wholeNumber(long long low, long long high)
-{
-    return CLI::Validator(
-        [low, high](std::string& text)
-        {
-            long long value = 0;
-            const char* end = text.data() + text.size();
-            const auto [at, error] = std::from_chars(text.data(), end, value);
-            if (error != std::errc() || at != end || value < low || value > high)
-            {
-                return "must be a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
-                       ", got \"" + text + "\"";
-            }
-            return std::string();
-        },
-        "INT in [" + std::to_string(low) + " - " + std::to_string(high) + "]");
 }
 
 } // namespace

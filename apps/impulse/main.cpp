@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The impulse command-line tool.
 #include "bench_command.hpp"
+#include "option_checks.hpp"
 #include "run_command.hpp"
 #ifdef IMPULSE_HAVE_MUJOCO
 #include "mujoco_commands.hpp"
@@ -47,7 +48,7 @@ int main(int argc, char** argv)
     runCommand
         ->add_option("--threads", run.threads,
                      "Worker threads (0: one per hardware thread); the trajectory is the same at any count")
-        ->check(CLI::NonNegativeNumber);
+        ->check(impulse::app::wholeNumber(0, 65536));
 
     const impulse::app::SeeCommands see(app);
     const impulse::app::BenchCommand bench(app);

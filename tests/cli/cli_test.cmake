@@ -187,7 +187,8 @@ else()
     check_failed("a missing scene file: exit ${run_rc}, stderr: ${run_err}")
 endif()
 
-foreach(bad_option "--dt;-1" "--dt;0" "--dt;nan" "--duration;-1" "--duration;nan" "--every;0")
+foreach(bad_option "--dt;-1" "--dt;0" "--dt;nan" "--duration;-1" "--duration;nan" "--every;0" "--threads;-1"
+                   "--threads;two")
     run_impulse(run "${scene}" ${bad_option} --out "${WORK}/option.csv")
     exited_with_error(refused)
     list(GET bad_option 0 option_name)
