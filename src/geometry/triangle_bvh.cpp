@@ -33,12 +33,10 @@ Real cornerAngle(const Vec3& at, const Vec3& next, const Vec3& previous)
 
 // closestPointOnTriangle, inlined into the searches (the compiler would call it)
 [[gnu::always_inline]] inline TrianglePoint closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b,
-                                                              const Vec3& c)
+                                                              const Vec3& c, const Vec3& ab, const Vec3& ac)
 {
     // Voronoi regions of the triangle, tested corner, edge, then face (Ericson, Real-Time Collision
     // Detection, sec. 5.1.5), from dot products of the edges with the corner-to-point vectors.
-    const Vec3 ab = b - a;
-    const Vec3 ac = c - a;
     const Vec3 ap = p - a;
     const Real d1 = ab.dot(ap);
     const Real d2 = ac.dot(ap);
@@ -83,7 +81,7 @@ Real cornerAngle(const Vec3& at, const Vec3& next, const Vec3& previous)
 
 TrianglePoint closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
-    return closestOnTriangle(p, a, b, c);
+    return closestOnTriangle(p, a, b, c, b - a, c - a);
 }
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
@@ -136,7 +134,10 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
     for (const std::uint32_t t : m_order)
     {
         const auto& tri = m_triangles[t];
-        m_leafTriangles.push_back({m_vertices[tri[0]], m_vertices[tri[1]], m_vertices[tri[2]], t});
+        const Vec3& a = m_vertices[tri[0]];
+        const Vec3& b = m_vertices[tri[1]];
+        const Vec3& c = m_vertices[tri[2]];
+        m_leafTriangles.push_back({a, b, c, b - a, c - a, t});
     }
 }
 
@@ -229,7 +230,8 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
             {
                 const LeafTriangle& triangle = m_leafTriangles[i];
-                const TrianglePoint candidate = closestOnTriangle(p, triangle.a, triangle.b, triangle.c);
+                const TrianglePoint candidate =
+                    closestOnTriangle(p, triangle.a, triangle.b, triangle.c, triangle.ab, triangle.ac);
                 const Real squared = (p - candidate.point).squaredNorm();
                 if (squared < bestSquared)
                 {
@@ -280,7 +282,8 @@ void TriangleBvh::trianglesNear(const Vec3& p, Real radius, std::vector<std::uin
                       { return squaredDistanceToBox(p, lower, upper) < squaredRadius; },
                       [&](const LeafTriangle& triangle)
                       {
-                          const Vec3 closest = closestOnTriangle(p, triangle.a, triangle.b, triangle.c).point;
+                          const Vec3 closest =
+                              closestOnTriangle(p, triangle.a, triangle.b, triangle.c, triangle.ab, triangle.ac).point;
                           if ((p - closest).squaredNorm() < squaredRadius)
                           {
                               out.push_back(triangle.index);
@@ -297,8 +300,8 @@ void TriangleBvh::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Seg
                       {
                           // Moller-Trumbore: solve a + t d = v0 + u e1 + v e2 by Cramer's rule
                           const Vec3& v0 = triangle.a;
-                          const Vec3 e1 = triangle.b - v0;
-                          const Vec3 e2 = triangle.c - v0;
+                          const Vec3& e1 = triangle.ab;
+                          const Vec3& e2 = triangle.ac;
                           const Vec3 pvec = direction.cross(e2);
                           const Real det = e1.dot(pvec); // = -direction . (e1 x e2): positive when entering
                           if (det == 0.0)

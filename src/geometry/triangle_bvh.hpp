@@ -94,6 +94,8 @@ class TriangleBvh
         Vec3 a;
         Vec3 b;
         Vec3 c;
+        Vec3 ab;                 ///< b - a
+        Vec3 ac;                 ///< c - a
         std::uint32_t index = 0; ///< into m_triangles
     };
 
