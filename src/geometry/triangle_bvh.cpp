@@ -8,6 +8,11 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <numeric>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace impulse
 {
@@ -123,15 +128,51 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
         const auto& tri = m_triangles[t];
         centroids[t] = (m_vertices[tri[0]] + m_vertices[tri[1]] + m_vertices[tri[2]]) / 3.0;
     }
-    m_order.resize(m_triangles.size());
-    for (std::uint32_t t = 0; t < m_order.size(); ++t)
+    std::vector<std::uint32_t> order(m_triangles.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::vector<Node> nodes;
+    nodes.reserve(2 * m_triangles.size() / kLeafSize + 2);
+    buildNode(0, static_cast<std::uint32_t>(order.size()), centroids, order, nodes);
+
+    // The tree as it is searched: each inner node with its children's boxes paired, depth first;
+    // the triangles with their corners in leaf order.
+    std::vector<std::uint32_t> innerIndex(nodes.size());
+    std::uint32_t innerCount = 0;
+    for (std::size_t n = 0; n < nodes.size(); ++n)
     {
-        m_order[t] = t;
+        innerIndex[n] = nodes[n].count > 0 ? 0 : innerCount++;
     }
-    m_nodes.reserve(2 * m_triangles.size() / kLeafSize + 2);
-    buildNode(0, static_cast<std::uint32_t>(m_order.size()), centroids);
-    m_leafTriangles.reserve(m_order.size());
-    for (const std::uint32_t t : m_order)
+    const auto reference = [&](std::uint32_t n)
+    {
+        const Node& node = nodes[n];
+        return node.count > 0 ? kLeafBit | node.first << 3 | node.count : innerIndex[n];
+    };
+    m_inner.resize(innerCount);
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+    {
+        if (nodes[n].count > 0)
+        {
+            continue;
+        }
+        InnerNode& inner = m_inner[innerIndex[n]];
+        const std::uint32_t children[2] = {nodes[n].left, nodes[n].right};
+        for (int k = 0; k < 2; ++k)
+        {
+            const Node& child = nodes[children[k]];
+            inner.lowerX[k] = child.lower.x();
+            inner.lowerY[k] = child.lower.y();
+            inner.lowerZ[k] = child.lower.z();
+            inner.upperX[k] = child.upper.x();
+            inner.upperY[k] = child.upper.y();
+            inner.upperZ[k] = child.upper.z();
+            inner.child[k] = reference(children[k]);
+        }
+    }
+    m_rootLower = nodes[0].lower;
+    m_rootUpper = nodes[0].upper;
+    m_rootChild = reference(0);
+    m_leafTriangles.reserve(order.size());
+    for (const std::uint32_t t : order)
     {
         const auto& tri = m_triangles[t];
         const Vec3& a = m_vertices[tri[0]];
@@ -141,9 +182,10 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
     }
 }
 
-// Builds the subtree over m_order[begin, end) and returns its index: a leaf for a few triangles, else
-// a split at the median centroid along the longest axis of the centroids' box.
-std::uint32_t TriangleBvh::buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids)
+// Builds the subtree over order[begin, end) into `nodes` and returns its index: a leaf for a few
+// triangles, else a split at the median centroid along the longest axis of the centroids' box.
+std::uint32_t TriangleBvh::buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids,
+                                     std::vector<std::uint32_t>& order, std::vector<Node>& nodes)
 {
     Node node;
     node.lower = Vec3::Constant(std::numeric_limits<Real>::infinity());
@@ -152,36 +194,36 @@ std::uint32_t TriangleBvh::buildNode(std::uint32_t begin, std::uint32_t end, con
     Vec3 centreUpper = node.upper;
     for (std::uint32_t i = begin; i < end; ++i)
     {
-        for (const std::uint32_t v : m_triangles[m_order[i]])
+        for (const std::uint32_t v : m_triangles[order[i]])
         {
             node.lower = node.lower.cwiseMin(m_vertices[v]);
             node.upper = node.upper.cwiseMax(m_vertices[v]);
         }
-        centreLower = centreLower.cwiseMin(centroids[m_order[i]]);
-        centreUpper = centreUpper.cwiseMax(centroids[m_order[i]]);
+        centreLower = centreLower.cwiseMin(centroids[order[i]]);
+        centreUpper = centreUpper.cwiseMax(centroids[order[i]]);
     }
-    const auto index = static_cast<std::uint32_t>(m_nodes.size());
-    m_nodes.push_back(node);
+    const auto index = static_cast<std::uint32_t>(nodes.size());
+    nodes.push_back(node);
     if (end - begin <= kLeafSize)
     {
-        m_nodes[index].first = begin;
-        m_nodes[index].count = end - begin;
+        nodes[index].first = begin;
+        nodes[index].count = end - begin;
         return index;
     }
     int axis = 0;
     (centreUpper - centreLower).maxCoeff(&axis);
     const std::uint32_t middle = begin + (end - begin) / 2;
-    std::nth_element(m_order.begin() + begin, m_order.begin() + middle, m_order.begin() + end,
+    std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end,
                      [&](std::uint32_t x, std::uint32_t y)
                      {
                          // ties broken by index, so the tree is the same whatever the library's sort
                          return centroids[x][axis] < centroids[y][axis] ||
                                 (centroids[x][axis] == centroids[y][axis] && x < y);
                      });
-    const std::uint32_t left = buildNode(begin, middle, centroids);
-    const std::uint32_t right = buildNode(middle, end, centroids);
-    m_nodes[index].left = left;
-    m_nodes[index].right = right;
+    const std::uint32_t left = buildNode(begin, middle, centroids, order, nodes);
+    const std::uint32_t right = buildNode(middle, end, centroids, order, nodes);
+    nodes[index].left = left;
+    nodes[index].right = right;
     return index;
 }
 
@@ -211,12 +253,18 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
     // that it is not computed again when the entry is popped and tested against the best.
     struct Entry
     {
-        std::uint32_t node;
+        std::uint32_t child;
         Real squared;
     };
     Entry stack[64];
     int top = 0;
-    stack[top++] = {0, squaredDistanceToBox(p, m_nodes[0].lower, m_nodes[0].upper)};
+    stack[top++] = {m_rootChild, squaredDistanceToBox(p, m_rootLower, m_rootUpper)};
+#if defined(__SSE2__)
+    const __m128d zero = _mm_setzero_pd();
+    const __m128d px = _mm_set1_pd(p.x());
+    const __m128d py = _mm_set1_pd(p.y());
+    const __m128d pz = _mm_set1_pd(p.z());
+#endif
     while (top > 0)
     {
         const Entry entry = stack[--top];
@@ -224,10 +272,11 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
         {
             continue;
         }
-        const Node& node = m_nodes[entry.node];
-        if (node.count > 0)
+        if (entry.child & kLeafBit)
         {
-            for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+            const std::uint32_t first = (entry.child & ~kLeafBit) >> 3;
+            const std::uint32_t count = entry.child & 7u;
+            for (std::uint32_t i = first; i < first + count; ++i)
             {
                 const LeafTriangle& triangle = m_leafTriangles[i];
                 const TrianglePoint candidate =
@@ -244,15 +293,39 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
             }
             continue;
         }
-        const Real toLeft = squaredDistanceToBox(p, m_nodes[node.left].lower, m_nodes[node.left].upper);
-        const Real toRight = squaredDistanceToBox(p, m_nodes[node.right].lower, m_nodes[node.right].upper);
-        // push the farther child first so the nearer is searched first (selects, not branches: which
-        // is nearer is a coin toss to the branch predictor)
-        const bool leftFirst = toLeft <= toRight;
-        stack[top].node = leftFirst ? node.right : node.left;
-        stack[top].squared = leftFirst ? toRight : toLeft;
-        stack[top + 1].node = leftFirst ? node.left : node.right;
-        stack[top + 1].squared = leftFirst ? toLeft : toRight;
+        const InnerNode& node = m_inner[entry.child];
+        // both children's squared distances, each with the operations of squaredDistanceToBox; then
+        // the farther child is pushed first so that the nearer is searched first (selects, not
+        // branches: which is nearer is a coin toss to the branch predictor)
+#if defined(__SSE2__)
+        const __m128d dx = _mm_max_pd(
+            zero, _mm_max_pd(_mm_sub_pd(px, _mm_load_pd(node.upperX)), _mm_sub_pd(_mm_load_pd(node.lowerX), px)));
+        const __m128d dy = _mm_max_pd(
+            zero, _mm_max_pd(_mm_sub_pd(py, _mm_load_pd(node.upperY)), _mm_sub_pd(_mm_load_pd(node.lowerY), py)));
+        const __m128d dz = _mm_max_pd(
+            zero, _mm_max_pd(_mm_sub_pd(pz, _mm_load_pd(node.upperZ)), _mm_sub_pd(_mm_load_pd(node.lowerZ), pz)));
+        const __m128d toChild = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+        const __m128d swapped = _mm_shuffle_pd(toChild, toChild, 1);
+        const __m128d leftNearer = _mm_cmple_sd(toChild, swapped); // lane 0: left <= right
+        const __m128d mask = _mm_unpacklo_pd(leftNearer, leftNearer);
+        // (farther, nearer): (right, left) when the left is nearer, else (left, right)
+        const __m128d ordered = _mm_or_pd(_mm_and_pd(mask, swapped), _mm_andnot_pd(mask, toChild));
+        const bool leftFirst = _mm_movemask_pd(leftNearer) & 1;
+        stack[top].squared = _mm_cvtsd_f64(ordered);
+        stack[top + 1].squared = _mm_cvtsd_f64(_mm_unpackhi_pd(ordered, ordered));
+#else
+        Real toChild[2];
+        for (int k = 0; k < 2; ++k)
+        {
+            toChild[k] = squaredDistanceToBox(p, Vec3(node.lowerX[k], node.lowerY[k], node.lowerZ[k]),
+                                              Vec3(node.upperX[k], node.upperY[k], node.upperZ[k]));
+        }
+        const bool leftFirst = toChild[0] <= toChild[1];
+        stack[top].squared = leftFirst ? toChild[1] : toChild[0];
+        stack[top + 1].squared = leftFirst ? toChild[0] : toChild[1];
+#endif
+        stack[top].child = leftFirst ? node.child[1] : node.child[0];
+        stack[top + 1].child = leftFirst ? node.child[0] : node.child[1];
         top += 2;
     }
     if (best.found)
