@@ -29,6 +29,63 @@ bool segmentMeetsBox(const Vec3& a, const Vec3& d, const Vec3& lower, const Vec3
     return clipSegmentToBox(a, d, lower, upper, enter, leave);
 }
 
+#if defined(__SSE2__)
+// Squared distances from p (each coordinate in both lanes) to the two boxes of a paired node: per
+// lane exactly the operations of squaredDistanceToBox.
+template <class Pair> __m128d pairSquaredDistance(const Pair& node, __m128d px, __m128d py, __m128d pz)
+{
+    const __m128d zero = _mm_setzero_pd();
+    const __m128d dx = _mm_max_pd(
+        zero, _mm_max_pd(_mm_sub_pd(px, _mm_load_pd(node.upperX)), _mm_sub_pd(_mm_load_pd(node.lowerX), px)));
+    const __m128d dy = _mm_max_pd(
+        zero, _mm_max_pd(_mm_sub_pd(py, _mm_load_pd(node.upperY)), _mm_sub_pd(_mm_load_pd(node.lowerY), py)));
+    const __m128d dz = _mm_max_pd(
+        zero, _mm_max_pd(_mm_sub_pd(pz, _mm_load_pd(node.upperZ)), _mm_sub_pd(_mm_load_pd(node.lowerZ), pz)));
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+}
+#endif
+
+// Which of the two boxes of a paired node the segment a + t d, t in [0, 1], meets (bit 0, bit 1):
+// per box the answer of clipSegmentToBox. Its early exits are left out: enter only grows and leave
+// only shrinks, so a box it leaves early still has enter > leave at the end.
+template <class Pair> int pairMeetsSegment(const Pair& node, const Vec3& a, const Vec3& d)
+{
+#if defined(__SSE2__)
+    const Real* const lower[3] = {node.lowerX, node.lowerY, node.lowerZ};
+    const Real* const upper[3] = {node.upperX, node.upperY, node.upperZ};
+    __m128d enter = _mm_setzero_pd();
+    __m128d leave = _mm_set1_pd(1.0);
+    __m128d missed = _mm_setzero_pd();
+    for (int axis = 0; axis < 3; ++axis)
+    {
+        const __m128d start = _mm_set1_pd(a[axis]);
+        const __m128d low = _mm_load_pd(lower[axis]);
+        const __m128d high = _mm_load_pd(upper[axis]);
+        if (std::abs(d[axis]) < std::numeric_limits<Real>::min())
+        {
+            missed = _mm_or_pd(missed, _mm_or_pd(_mm_cmplt_pd(start, low), _mm_cmpgt_pd(start, high)));
+            continue;
+        }
+        const __m128d step = _mm_set1_pd(d[axis]);
+        const __m128d t0 = _mm_div_pd(_mm_sub_pd(low, start), step);
+        const __m128d t1 = _mm_div_pd(_mm_sub_pd(high, start), step);
+        // if (t0 > t1) swap; enter = std::max(enter, t0); leave = std::min(leave, t1)
+        enter = _mm_max_pd(_mm_min_pd(t1, t0), enter);
+        leave = _mm_min_pd(_mm_max_pd(t0, t1), leave);
+    }
+    return ~_mm_movemask_pd(_mm_or_pd(missed, _mm_cmpgt_pd(enter, leave))) & 3;
+#else
+    int meets = 0;
+    for (int k = 0; k < 2; ++k)
+    {
+        Real enter = 0.0;
+        Real leave = 0.0;
+        meets |= clipSegmentToBox(a, d, node.lower(k), node.upper(k), enter, leave) ? 1 << k : 0;
+    }
+    return meets;
+#endif
+}
+
 Real cornerAngle(const Vec3& at, const Vec3& next, const Vec3& previous)
 {
     const Vec3 u = (next - at).normalized();
@@ -260,7 +317,6 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
     int top = 0;
     stack[top++] = {m_rootChild, squaredDistanceToBox(p, m_rootLower, m_rootUpper)};
 #if defined(__SSE2__)
-    const __m128d zero = _mm_setzero_pd();
     const __m128d px = _mm_set1_pd(p.x());
     const __m128d py = _mm_set1_pd(p.y());
     const __m128d pz = _mm_set1_pd(p.z());
@@ -298,13 +354,7 @@ SurfacePoint TriangleBvh::closestPoint(const Vec3& p, Real maxDistance) const
         // the farther child is pushed first so that the nearer is searched first (selects, not
         // branches: which is nearer is a coin toss to the branch predictor)
 #if defined(__SSE2__)
-        const __m128d dx = _mm_max_pd(
-            zero, _mm_max_pd(_mm_sub_pd(px, _mm_load_pd(node.upperX)), _mm_sub_pd(_mm_load_pd(node.lowerX), px)));
-        const __m128d dy = _mm_max_pd(
-            zero, _mm_max_pd(_mm_sub_pd(py, _mm_load_pd(node.upperY)), _mm_sub_pd(_mm_load_pd(node.lowerY), py)));
-        const __m128d dz = _mm_max_pd(
-            zero, _mm_max_pd(_mm_sub_pd(pz, _mm_load_pd(node.upperZ)), _mm_sub_pd(_mm_load_pd(node.lowerZ), pz)));
-        const __m128d toChild = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+        const __m128d toChild = pairSquaredDistance(node, px, py, pz);
         const __m128d swapped = _mm_shuffle_pd(toChild, toChild, 1);
         const __m128d leftNearer = _mm_cmple_sd(toChild, swapped); // lane 0: left <= right
         const __m128d mask = _mm_unpacklo_pd(leftNearer, leftNearer);
@@ -351,8 +401,23 @@ void TriangleBvh::trianglesNear(const Vec3& p, Real radius, std::vector<std::uin
 {
     out.clear();
     const Real squaredRadius = radius * radius;
+#if defined(__SSE2__)
+    const __m128d px = _mm_set1_pd(p.x());
+    const __m128d py = _mm_set1_pd(p.y());
+    const __m128d pz = _mm_set1_pd(p.z());
+    const __m128d squaredRadii = _mm_set1_pd(squaredRadius);
+#endif
     forEachTriangleIn([&](const Vec3& lower, const Vec3& upper)
                       { return squaredDistanceToBox(p, lower, upper) < squaredRadius; },
+                      [&](const InnerNode& node)
+                      {
+#if defined(__SSE2__)
+                          return _mm_movemask_pd(_mm_cmplt_pd(pairSquaredDistance(node, px, py, pz), squaredRadii));
+#else
+                          return (squaredDistanceToBox(p, node.lower(0), node.upper(0)) < squaredRadius ? 1 : 0) |
+                                 (squaredDistanceToBox(p, node.lower(1), node.upper(1)) < squaredRadius ? 2 : 0);
+#endif
+                      },
                       [&](const LeafTriangle& triangle)
                       {
                           const Vec3 closest =
@@ -369,6 +434,7 @@ void TriangleBvh::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Seg
     out.clear();
     const Vec3 direction = b - a;
     forEachTriangleIn([&](const Vec3& lower, const Vec3& upper) { return segmentMeetsBox(a, direction, lower, upper); },
+                      [&](const InnerNode& node) { return pairMeetsSegment(node, a, direction); },
                       [&](const LeafTriangle& triangle)
                       {
                           // Moller-Trumbore: solve a + t d = v0 + u e1 + v e2 by Cramer's rule

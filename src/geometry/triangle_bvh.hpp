@@ -120,8 +120,10 @@ class TriangleBvh
     };
 
     /// Depth first, left before right: visit(triangle) for each triangle of every leaf reached
-    /// through boxes that enters(lower, upper) accepts.
-    template <class Enters, class Visit> void forEachTriangleIn(Enters enters, Visit visit) const
+    /// through boxes that are entered: enters(lower, upper) for the root's box, and for the two
+    /// children of an inner node entersChildren(node), bit 0 for the left and bit 1 for the right.
+    template <class Enters, class EntersChildren, class Visit>
+    void forEachTriangleIn(Enters enters, EntersChildren entersChildren, Visit visit) const
     {
         if (!enters(m_rootLower, m_rootUpper))
         {
@@ -143,13 +145,12 @@ class TriangleBvh
                 continue;
             }
             const InnerNode& node = m_inner[child];
-            const bool right = enters(node.lower(1), node.upper(1));
-            const bool left = enters(node.lower(0), node.upper(0));
-            if (right)
+            const int entered = entersChildren(node);
+            if (entered & 2)
             {
                 stack[top++] = node.child[1];
             }
-            if (left)
+            if (entered & 1)
             {
                 stack[top++] = node.child[0];
             }
