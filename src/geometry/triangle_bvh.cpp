@@ -9,6 +9,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <string>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -20,6 +21,7 @@ namespace
 {
 
 constexpr std::uint32_t kLeafSize = 4;
+static_assert(kLeafSize < 8, "a leaf's triangle count has 3 bits in InnerNode::child");
 
 // Does the segment a + t d, t in [0, 1], meet the box?
 bool segmentMeetsBox(const Vec3& a, const Vec3& d, const Vec3& lower, const Vec3& upper)
@@ -184,6 +186,12 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh)
     {
         const auto& tri = m_triangles[t];
         centroids[t] = (m_vertices[tri[0]] + m_vertices[tri[1]] + m_vertices[tri[2]]) / 3.0;
+    }
+    if (m_triangles.size() >= (std::size_t{1} << 28))
+    {
+        // a leaf's first triangle has 28 bits in InnerNode::child
+        throw MeshError("a mesh may have at most 268 435 455 triangles, this one has " +
+                        std::to_string(m_triangles.size()));
     }
     std::vector<std::uint32_t> order(m_triangles.size());
     std::iota(order.begin(), order.end(), 0u);
