@@ -107,6 +107,21 @@ class MeshGeometry
     Real distanceLowerBound(const Vec3& pointBody, Real needed, Real gridPhi) const;
     /// Length of the longest feature edge.
     Real longestFeatureEdge() const { return m_longestFeatureEdge; }
+
+    /// A few vertices near one another, within `radius` of `centre` (body frame): a query can pass
+    /// over a cluster far from what it tests without looking at its vertices.
+    struct VertexCluster
+    {
+        Vec3 centre = Vec3::Zero();
+        Real radius = 0.0;
+        std::uint32_t first = 0; ///< into vertexClusterMembers()
+        std::uint32_t count = 0;
+    };
+    /// Clusters of at most kClusterSize vertices covering every vertex once.
+    const std::vector<VertexCluster>& vertexClusters() const { return m_vertexClusters; }
+    /// Vertex indices, each cluster's contiguous.
+    const std::vector<std::uint32_t>& vertexClusterMembers() const { return m_vertexClusterMembers; }
+    static constexpr std::uint32_t kClusterSize = 8;
     /// How far a grid value may lie above the exact distance (trilinear error of a 1-Lipschitz field).
     Real gridError() const;
 
@@ -125,11 +140,16 @@ class MeshGeometry
     MeshDistance distanceFrom(const Vec3& pointBody, const SurfacePoint& closest) const;
     /// How far the closest triangle can be from a point whose grid value is gridPhi.
     Real searchRadius(Real gridPhi) const;
+    /// Splits m_vertexClusterMembers[first, first + count) at the median along its longest axis
+    /// until clusters are small enough.
+    void buildClusters(std::uint32_t first, std::uint32_t count);
 
     std::vector<Vec3> m_vertices;
     std::vector<std::array<std::uint32_t, 3>> m_triangles;
     std::vector<std::array<std::uint32_t, 2>> m_edges;
     std::vector<std::array<std::uint32_t, 2>> m_featureEdges;
+    std::vector<VertexCluster> m_vertexClusters;
+    std::vector<std::uint32_t> m_vertexClusterMembers;
     Pose m_frameInMesh;
     Real m_volume = 0.0;
     Vec3 m_unitInertia = Vec3::Zero();

@@ -167,76 +167,136 @@ void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance
     out.push_back({pointWorld, side == Side::PointsOfA ? normal : Vec3(-normal), d.phi});
 }
 
-// What the edge test knows of a vertex's phi against the target: `value` is a lower bound of phi,
-// -infinity for a sample point. Where the exact bound would cost a distance query it is deferred
-// (`state` says which), and `value` holds a cheaper one that is never above it: most edges are
-// decided by the cheap bounds or by a sample point at one end, and never need the query.
-struct VertexBound
+// What the edge test knows of each vertex's phi against the target, gathered by verticesAgainst for
+// edgesThrough: `value` is a lower bound of phi, -infinity for a sample point. Where the exact bound
+// costs something (a distance query, or, for a vertex in a cluster far from the target, even the
+// distance to the target's box) it is deferred, and `value` holds a cheaper bound that is never
+// above it: most edges are settled by the cheap bounds or by a sample point at one end.
+struct VertexBounds
 {
     enum class State : std::uint8_t
     {
         Exact,
+        Unvisited,      ///< verticesAgainst has yet to look at it
+        Far,            ///< exact bound: its distance to the target's box, which is above `value`
         AboveOutside,   ///< exact bound max(outside, lowerBound); value = outside
-        AboveThreshold, ///< exact bound max(lowerBound, threshold); value = threshold, grid = grid phi
+        AboveThreshold, ///< exact bound max(lowerBound, threshold); value = threshold
     };
-    Real value = 0.0;
-    Real grid = 0.0;
-    Vec3 local = Vec3::Zero(); ///< the vertex in the target's frame, for a deferred bound
-    State state = State::Exact;
-};
-
-// The lower bounds of one set of vertices against one target, gathered by verticesAgainst for
-// edgesThrough.
-struct VertexBounds
-{
-    std::vector<VertexBound> vertices;
+    std::vector<Real> value;
+    std::vector<State> state;
+    std::vector<Vec3> local; ///< the vertex in the target's frame, where a deferred bound needs it
+    std::vector<Real> grid;  ///< AboveThreshold: the grid's phi at `local`
     Real edgeReach = 0.0;
+    Mat3 rotation = Mat3::Identity(); ///< body frame of the vertices -> target frame
+    Vec3 shift = Vec3::Zero();
 
     // The exact bound of vertex v, computed once when deferred.
-    Real exact(std::size_t v, const Target& target)
+    Real exact(const std::vector<Vec3>& vertices, std::size_t v, const Target& target)
     {
-        VertexBound& bound = vertices[v];
-        if (bound.state == VertexBound::State::AboveOutside)
+        switch (state[v])
         {
-            bound.value = std::max(bound.value, target.lowerBound(bound.local, edgeReach));
+        case State::Far:
+            // what verticesAgainst would have found: farther than the threshold and the edge reach
+            value[v] = std::sqrt(squaredDistanceToBox(rotation * vertices[v] + shift, target.lower, target.upper));
+            break;
+        case State::AboveOutside:
+            value[v] = std::max(value[v], target.lowerBound(local[v], edgeReach));
+            break;
+        case State::AboveThreshold:
+            value[v] = std::max(target.lowerBound(local[v], edgeReach, grid[v]), value[v]);
+            break;
+        default:
+            break;
         }
-        else if (bound.state == VertexBound::State::AboveThreshold)
-        {
-            bound.value = std::max(target.lowerBound(bound.local, edgeReach, bound.grid), bound.value);
-        }
-        bound.state = VertexBound::State::Exact;
-        return bound.value;
+        state[v] = State::Exact;
+        return value[v];
     }
 };
+
+// Marks Far the vertices of every cluster that lies, with a wide margin for round-off, farther than
+// `reach` from the target's box, so that each of its vertices is: neither a sample point nor in need
+// of a distance query, its bound its distance to the box, and that at least `reach`.
+void markFarClusters(const MeshGeometry& mesh, const Target& target, Real reach, VertexBounds& bounds)
+{
+    using State = VertexBounds::State;
+    // |rotation x| <= stretch |x|: the map is a rotation up to round-off, but bound it all the same
+    const Real stretch =
+        std::sqrt(1.0 + (bounds.rotation.transpose() * bounds.rotation - Mat3::Identity()).norm()) * (1.0 + 1e-9);
+    // far above the round-off of the vertices' and the centres' transforms and box distances
+    // (a few units in the last place of these magnitudes)
+    const Real slack = 1e-9 * (bounds.shift.norm() + mesh.boundingRadius() + target.lower.cwiseAbs().maxCoeff() +
+                               target.upper.cwiseAbs().maxCoeff() + reach);
+    const auto beyondReach = [&](const Vec3& centre, Real radius)
+    {
+        const Real distance =
+            std::sqrt(squaredDistanceToBox(bounds.rotation * centre + bounds.shift, target.lower, target.upper));
+        return distance - stretch * radius > reach + slack + 1e-9 * distance;
+    };
+    const std::vector<std::uint32_t>& members = mesh.vertexClusterMembers();
+    if (beyondReach(Vec3::Zero(), mesh.boundingRadius()))
+    {
+        std::fill(bounds.state.begin(), bounds.state.end(), State::Far);
+        std::fill(bounds.value.begin(), bounds.value.end(), reach);
+        return;
+    }
+    for (const MeshGeometry::VertexCluster& cluster : mesh.vertexClusters())
+    {
+        const bool far = beyondReach(cluster.centre, cluster.radius);
+        for (std::uint32_t i = cluster.first; i < cluster.first + cluster.count; ++i)
+        {
+            bounds.state[members[i]] = far ? State::Far : State::Unvisited;
+            bounds.value[members[i]] = reach;
+        }
+    }
+}
 
 // The vertices (body frame of their body at `pose`) against the target. Fills `bounds` for the
 // edge test: -infinity for the vertices that are sample points, else a lower bound of phi that is
 // exact below `edgeReach` (the longest edge), so that only edges truly near the target are cast.
-void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const Target& target, Real threshold,
-                     Real edgeReach, Side side, VertexBounds& bounds, std::vector<ContactPoint>& out)
+// `mesh`, when the vertices are a mesh's, lets whole clusters of vertices far from the target pass.
+void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh, const Pose& pose,
+                     const Target& target, Real threshold, Real edgeReach, Side side, VertexBounds& bounds,
+                     std::vector<ContactPoint>& out)
 {
-    bounds.vertices.resize(vertices.size());
+    using State = VertexBounds::State;
+    bounds.value.resize(vertices.size());
+    bounds.state.resize(vertices.size());
+    bounds.local.resize(vertices.size());
+    bounds.grid.resize(vertices.size());
     bounds.edgeReach = edgeReach;
     // body frame of the vertices -> target frame in one affine map
-    const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
-    const Vec3 shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
+    bounds.rotation = target.pose.rotation.transpose() * pose.rotation;
+    bounds.shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
+    const Mat3& rotation = bounds.rotation;
+    const Vec3& shift = bounds.shift;
+    if (mesh != nullptr)
+    {
+        markFarClusters(*mesh, target, std::max({threshold, edgeReach, Real(0.0)}), bounds);
+    }
+    else
+    {
+        std::fill(bounds.state.begin(), bounds.state.end(), State::Unvisited);
+    }
     for (std::size_t v = 0; v < vertices.size(); ++v)
     {
-        VertexBound& bound = bounds.vertices[v];
+        if (bounds.state[v] != State::Unvisited)
+        {
+            continue;
+        }
         const Vec3 local = rotation * vertices[v] + shift;
         const Real outside = std::sqrt(squaredDistanceToBox(local, target.lower, target.upper));
         if (outside > 0.0 && outside >= threshold)
         {
             // phi >= the distance to the target's bounding box
-            bound.value = outside;
+            bounds.value[v] = outside;
             if (outside >= edgeReach)
             {
-                bound.state = VertexBound::State::Exact;
+                bounds.state[v] = State::Exact;
             }
             else
             {
-                bound.state = VertexBound::State::AboveOutside; // max(outside, lowerBound) when needed
-                bound.local = local;
+                bounds.state[v] = State::AboveOutside; // max(outside, lowerBound) when needed
+                bounds.local[v] = local;
             }
             continue;
         }
@@ -244,41 +304,39 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const Pose& pose, const 
         if (d.phi < threshold)
         {
             addContact(pose.toWorld(vertices[v]), target, d, side, out);
-            bound.value = -kInfinity;
-            bound.state = VertexBound::State::Exact;
+            bounds.value[v] = -kInfinity;
+            bounds.state[v] = State::Exact;
         }
         else if (d.exact)
         {
             // not a sample point, so phi >= threshold whatever the grid's error
-            bound.value = std::max(d.phi, threshold);
-            bound.state = VertexBound::State::Exact;
+            bounds.value[v] = std::max(d.phi, threshold);
+            bounds.state[v] = State::Exact;
         }
         else
         {
             // max(lowerBound, threshold) when needed; d.phi is the grid's value there
-            bound.value = threshold;
-            bound.grid = d.phi;
-            bound.local = local;
-            bound.state = VertexBound::State::AboveThreshold;
+            bounds.value[v] = threshold;
+            bounds.grid[v] = d.phi;
+            bounds.local[v] = local;
+            bounds.state[v] = State::AboveThreshold;
         }
     }
 }
 
 // Edges that pass through the target: the middle of each passage is a sample point.
 template <class Edges>
-void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const Pose& pose, const Target& target,
-                  VertexBounds& bounds, Side side, std::vector<ContactPoint>& out)
+void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const Target& target, VertexBounds& bounds,
+                  Side side, std::vector<ContactPoint>& out)
 {
     thread_local std::vector<Real> enterLeave;
-    const Mat3 rotation = target.pose.rotation.transpose() * pose.rotation;
-    const Vec3 shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
+    const Mat3& rotation = bounds.rotation; // as verticesAgainst computed it for this pose and target
+    const Vec3& shift = bounds.shift;
     for (const auto& edge : edges)
     {
         const Vec3& a = vertices[edge[0]];
         const Vec3& b = vertices[edge[1]];
-        const VertexBound& boundA = bounds.vertices[edge[0]];
-        const VertexBound& boundB = bounds.vertices[edge[1]];
-        Real reach = boundA.value + boundB.value;
+        Real reach = bounds.value[edge[0]] + bounds.value[edge[1]];
         if (reach == -kInfinity)
         {
             continue; // an end is a sample point already (its bound is exact)
@@ -287,11 +345,11 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const P
         {
             continue; // phi is 1-Lipschitz: balls of radius phi about the ends cover the edge
         }
-        if (boundA.state != VertexBound::State::Exact || boundB.state != VertexBound::State::Exact)
+        if (bounds.state[edge[0]] != VertexBounds::State::Exact || bounds.state[edge[1]] != VertexBounds::State::Exact)
         {
             // the cheap bounds are below the exact ones, and the sum and square round monotonically:
             // an edge they cover is covered by the exact bounds too, so only now are those needed
-            reach = bounds.exact(edge[0], target) + bounds.exact(edge[1], target);
+            reach = bounds.exact(vertices, edge[0], target) + bounds.exact(vertices, edge[1], target);
             if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
             {
                 continue;
@@ -433,12 +491,12 @@ void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& 
     const std::vector<Vec3> corners = boxCornersLocal(a);
     const MeshTarget meshTarget(mesh, poseB);
     const BoxTarget boxTarget(a, poseA);
-    verticesAgainst(corners, poseA, meshTarget, threshold, 2.0 * a.halfExtents.maxCoeff(), Side::PointsOfA,
+    verticesAgainst(corners, nullptr, poseA, meshTarget, threshold, 2.0 * a.halfExtents.maxCoeff(), Side::PointsOfA,
                     cornerBounds, out);
-    verticesAgainst(mesh.vertices(), poseB, boxTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+    verticesAgainst(mesh.vertices(), &mesh, poseB, boxTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
                     vertexBounds, out);
-    edgesThrough(corners, kBoxEdges, poseA, meshTarget, cornerBounds, Side::PointsOfA, out);
-    edgesThrough(mesh.vertices(), mesh.featureEdges(), poseB, boxTarget, vertexBounds, Side::PointsOfB, out);
+    edgesThrough(corners, kBoxEdges, meshTarget, cornerBounds, Side::PointsOfA, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), boxTarget, vertexBounds, Side::PointsOfB, out);
 }
 
 void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
@@ -467,9 +525,9 @@ void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, cons
     }
     thread_local VertexBounds vertexBounds;
     const CapsuleTarget capsuleTarget(a, poseA);
-    verticesAgainst(mesh.vertices(), poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+    verticesAgainst(mesh.vertices(), &mesh, poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
                     vertexBounds, out);
-    edgesThrough(mesh.vertices(), mesh.featureEdges(), poseB, capsuleTarget, vertexBounds, Side::PointsOfB, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), capsuleTarget, vertexBounds, Side::PointsOfB, out);
 }
 
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
@@ -485,12 +543,12 @@ void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose
     thread_local VertexBounds boundsB;
     const MeshTarget targetA(meshA, poseA);
     const MeshTarget targetB(meshB, poseB);
-    verticesAgainst(meshA.vertices(), poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA, boundsA,
-                    out);
-    verticesAgainst(meshB.vertices(), poseB, targetA, threshold, meshB.longestFeatureEdge(), Side::PointsOfB, boundsB,
-                    out);
-    edgesThrough(meshA.vertices(), meshA.featureEdges(), poseA, targetB, boundsA, Side::PointsOfA, out);
-    edgesThrough(meshB.vertices(), meshB.featureEdges(), poseB, targetA, boundsB, Side::PointsOfB, out);
+    verticesAgainst(meshA.vertices(), &meshA, poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA,
+                    boundsA, out);
+    verticesAgainst(meshB.vertices(), &meshB, poseB, targetA, threshold, meshB.longestFeatureEdge(), Side::PointsOfB,
+                    boundsB, out);
+    edgesThrough(meshA.vertices(), meshA.featureEdges(), targetB, boundsA, Side::PointsOfA, out);
+    edgesThrough(meshB.vertices(), meshB.featureEdges(), targetA, boundsB, Side::PointsOfB, out);
 }
 
 } // namespace impulse

@@ -334,7 +334,46 @@ std::shared_ptr<const MeshGeometry> MeshGeometry::build(const TriangleMesh& sour
         std::make_unique<SignedDistanceGrid>(*geometry->m_bvh, geometry->m_lower, geometry->m_upper, resolution);
     geometry->m_vertices = std::move(body.vertices);
     geometry->m_triangles = std::move(body.triangles);
+    geometry->m_vertexClusterMembers.resize(geometry->m_vertices.size());
+    std::iota(geometry->m_vertexClusterMembers.begin(), geometry->m_vertexClusterMembers.end(), 0u);
+    geometry->buildClusters(0, static_cast<std::uint32_t>(geometry->m_vertices.size()));
     return geometry;
+}
+
+void MeshGeometry::buildClusters(std::uint32_t first, std::uint32_t count)
+{
+    const auto begin = m_vertexClusterMembers.begin() + first;
+    const auto end = begin + count;
+    Vec3 lower = m_vertices[*begin];
+    Vec3 upper = lower;
+    for (auto v = begin; v != end; ++v)
+    {
+        lower = lower.cwiseMin(m_vertices[*v]);
+        upper = upper.cwiseMax(m_vertices[*v]);
+    }
+    if (count <= kClusterSize)
+    {
+        VertexCluster cluster;
+        cluster.centre = 0.5 * (lower + upper);
+        for (auto v = begin; v != end; ++v)
+        {
+            cluster.radius = std::max(cluster.radius, (m_vertices[*v] - cluster.centre).norm());
+        }
+        cluster.first = first;
+        cluster.count = count;
+        m_vertexClusters.push_back(cluster);
+        return;
+    }
+    int axis = 0;
+    (upper - lower).maxCoeff(&axis);
+    const std::uint32_t half = count / 2;
+    std::nth_element(begin, begin + half, end,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                         return m_vertices[x][axis] < m_vertices[y][axis] ||
+                                (m_vertices[x][axis] == m_vertices[y][axis] && x < y);
+                     });
+    buildClusters(first, half);
+    buildClusters(first + half, count - half);
 }
 
 MeshDistance MeshGeometry::gridDistance(const Vec3& pointBody) const

@@ -77,54 +77,88 @@ class TriangleBvh
     std::size_t triangleCount() const { return m_triangles.size(); }
 
   private:
+    /// A node as the tree is built: triangles order[first, first + count) for a leaf.
     struct Node
     {
         Vec3 lower;
         Vec3 upper;
         std::uint32_t left = 0; ///< inner node: children
         std::uint32_t right = 0;
-        std::uint32_t first = 0; ///< leaf: first index into m_order
+        std::uint32_t first = 0; ///< leaf: first index into the order of the triangles
         std::uint32_t count = 0; ///< leaf: number of triangles; 0 for an inner node
     };
 
+    /// An inner node of the tree as it is searched: both children's boxes side by side (lane 0
+    /// left, lane 1 right), so that one pass of paired operations measures both, and a reference
+    /// to each child: an inner node's index, or with kLeafBit a leaf's first triangle in
+    /// m_leafTriangles (bits 3-30) and their number (bits 0-2).
+    struct InnerNode
+    {
+        alignas(16) Real lowerX[2];
+        Real lowerY[2];
+        Real lowerZ[2];
+        Real upperX[2];
+        Real upperY[2];
+        Real upperZ[2];
+        std::uint32_t child[2];
+
+        Vec3 lower(int k) const { return {lowerX[k], lowerY[k], lowerZ[k]}; }
+        Vec3 upper(int k) const { return {upperX[k], upperY[k], upperZ[k]}; }
+    };
+    static constexpr std::uint32_t kLeafBit = 1u << 31;
+
     /// A triangle's corners stored with its leaf, so that a leaf's triangles are read in one sweep
-    /// instead of through m_order, m_triangles and m_vertices.
+    /// instead of through the order, m_triangles and m_vertices.
     struct LeafTriangle
     {
         Vec3 a;
         Vec3 b;
         Vec3 c;
+        Vec3 ab;                 ///< b - a
+        Vec3 ac;                 ///< c - a
         std::uint32_t index = 0; ///< into m_triangles
     };
 
     /// Depth first, left before right: visit(triangle) for each triangle of every leaf reached
-    /// through boxes that enters(lower, upper) accepts.
-    template <class Enters, class Visit> void forEachTriangleIn(Enters enters, Visit visit) const
+    /// through boxes that are entered: enters(lower, upper) for the root's box, and for the two
+    /// children of an inner node entersChildren(node), bit 0 for the left and bit 1 for the right.
+    template <class Enters, class EntersChildren, class Visit>
+    void forEachTriangleIn(Enters enters, EntersChildren entersChildren, Visit visit) const
     {
-        std::uint32_t stack[64];
+        if (!enters(m_rootLower, m_rootUpper))
+        {
+            return;
+        }
+        std::uint32_t stack[64]; // children whose boxes were entered
         int top = 0;
-        stack[top++] = 0;
+        stack[top++] = m_rootChild;
         while (top > 0)
         {
-            const Node& node = m_nodes[stack[--top]];
-            if (!enters(node.lower, node.upper))
+            const std::uint32_t child = stack[--top];
+            if (child & kLeafBit)
             {
+                const std::uint32_t first = (child & ~kLeafBit) >> 3;
+                for (std::uint32_t i = first; i < first + (child & 7u); ++i)
+                {
+                    visit(m_leafTriangles[i]);
+                }
                 continue;
             }
-            if (node.count == 0)
+            const InnerNode& node = m_inner[child];
+            const int entered = entersChildren(node);
+            if (entered & 2)
             {
-                stack[top++] = node.right;
-                stack[top++] = node.left;
-                continue;
+                stack[top++] = node.child[1];
             }
-            for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+            if (entered & 1)
             {
-                visit(m_leafTriangles[i]);
+                stack[top++] = node.child[0];
             }
         }
     }
 
-    std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids);
+    std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, const std::vector<Vec3>& centroids,
+                            std::vector<std::uint32_t>& order, std::vector<Node>& nodes);
     Vec3 pseudonormal(std::uint32_t triangle, TriangleFeature feature) const;
 
     std::vector<Vec3> m_vertices;
@@ -132,9 +166,11 @@ class TriangleBvh
     std::vector<Vec3> m_faceNormals;                ///< unit, outward
     std::vector<std::array<Vec3, 3>> m_edgeNormals; ///< per triangle edge, sum of the two face normals
     std::vector<Vec3> m_vertexNormals;              ///< angle-weighted sums of incident face normals
-    std::vector<std::uint32_t> m_order;             ///< triangle indices, leaves contiguous
-    std::vector<LeafTriangle> m_leafTriangles;      ///< the triangles of m_order, in that order
-    std::vector<Node> m_nodes;                      ///< m_nodes[0] is the root
+    std::vector<LeafTriangle> m_leafTriangles;      ///< the triangles in tree order, leaves contiguous
+    std::vector<InnerNode> m_inner;                 ///< depth first, left before right
+    Vec3 m_rootLower = Vec3::Zero();                ///< the root's box
+    Vec3 m_rootUpper = Vec3::Zero();
+    std::uint32_t m_rootChild = 0; ///< the root, as InnerNode::child refers to it
 };
 
 } // namespace impulse

@@ -349,6 +349,30 @@ TEST(MeshBuild, SharedGeometryIsBuiltOnceAndReportsItsGrid)
     EXPECT_EQ(torus->edges().size(), 3u * 40u * 16u); // a torus: E = 3F/2, F = 2 * 40 * 16
 }
 
+TEST(MeshBuild, VertexClustersCoverEveryVertexOnceWithinTheirSpheres)
+{
+    const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
+    std::vector<int> seen(torus->vertices().size(), 0);
+    std::uint32_t next = 0;
+    for (const MeshGeometry::VertexCluster& cluster : torus->vertexClusters())
+    {
+        EXPECT_EQ(cluster.first, next);
+        EXPECT_GT(cluster.count, 0u);
+        EXPECT_LE(cluster.count, MeshGeometry::kClusterSize);
+        next += cluster.count;
+        for (std::uint32_t i = cluster.first; i < cluster.first + cluster.count; ++i)
+        {
+            const std::uint32_t v = torus->vertexClusterMembers()[i];
+            ++seen[v];
+            EXPECT_LE((torus->vertices()[v] - cluster.centre).norm(), cluster.radius);
+        }
+        // a cluster is small: a few neighbouring vertices, not a slice of the whole ring
+        EXPECT_LT(cluster.radius, 0.05);
+    }
+    EXPECT_EQ(next, torus->vertices().size());
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+}
+
 TEST(MeshBuild, RefusesAHole)
 {
     TriangleMesh mesh = boxMesh(Vec3::Constant(0.1));
