@@ -41,6 +41,10 @@ int main(int argc, char** argv)
                      "End the contact pass with a shock-propagation sweep: on (the default) or off")
         ->check(CLI::IsMember({"on", "off"}));
     runCommand
+        ->add_option("--push-out", run.pushOut,
+                     "Move overlapping bodies apart after the position update: on (the default) or off")
+        ->check(CLI::IsMember({"on", "off"}));
+    runCommand
         ->add_option("--restitution-threshold", run.restitutionThreshold,
                      "Resolve collisions approaching slower than this speed (m/s) with restitution 0; "
                      "default none")

@@ -93,6 +93,10 @@ int runScene(const RunOptions& options)
     {
         scene.options.shockPropagation = *options.shockPropagation == "on";
     }
+    if (options.pushOut)
+    {
+        scene.options.pushOut = *options.pushOut == "on";
+    }
     scene.options.threads = options.threads;
     if (options.restitutionThreshold)
     {

@@ -18,6 +18,7 @@ struct RunOptions
     std::optional<std::string> scheme;           ///< "guendelman" or "traditional"
     std::optional<double> restitutionThreshold;  ///< m/s
     std::optional<std::string> shockPropagation; ///< "on" or "off"
+    std::optional<std::string> pushOut;          ///< "on" or "off"
     int threads = 1;                             ///< 0: one per hardware thread
 };
 

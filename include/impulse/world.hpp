@@ -50,6 +50,14 @@ struct StepOptions
     /// contact graph with restitution 0, every lower level frozen, so stacks stand with few
     /// iterations. Costs exact momentum conservation within that sweep.
     bool shockPropagation = true;
+    /// After the position update, move bodies that overlap deeper than pushOutAllowance apart:
+    /// positions only, level by level up the contact graph with lower levels held still. The passes
+    /// only remove approach, so an overlap left by a dense impact would otherwise stay for as long
+    /// as the bodies rest on each other.
+    bool pushOut = true;
+    Real pushOutAllowance = 1e-4; ///< m; shallower overlaps are left alone
+    Real pushOutSpeed = 10.0;     ///< m/s; a body leaves what it rests on at most this fast
+    int pushOutIterations = 2;    ///< sweeps up the levels; stops early after one that moves nothing
     /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
     /// hardware thread. Trajectories are bit-identical whatever the number.
     int threads = 1;
@@ -63,6 +71,7 @@ struct StepStats
     int contactImpulses = 0;   ///< impulses applied by the contact pass
     int collisionSweeps = 0;   ///< collision sweeps actually run (stops early when one applies none)
     int shockImpulses = 0;     ///< impulses applied by shock propagation
+    int pushOutMoves = 0;      ///< pushes that moved a body (or a pair of bodies) out of an overlap
     int contactLevels = 0;     ///< levels of the contact graph
     int contactPairs = 0;      ///< candidate pairs touching (within the contact thickness) at the contact graph
     int islands = 0;           ///< groups of dynamic bodies connected by candidate pairs, solved independently
@@ -76,6 +85,7 @@ struct StepStats
         double contactPass = 0.0; ///< with the velocity update
         double shockPropagation = 0.0;
         double positionUpdate = 0.0;
+        double pushOut = 0.0;
     } milliseconds;
 };
 

@@ -351,7 +351,8 @@ void readSolver(const Field& field, StepOptions& options)
 {
     field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
                          "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold",
-                         "shock_propagation"});
+                         "shock_propagation", "push_out", "push_out_allowance", "push_out_speed",
+                         "push_out_iterations"});
     if (field.has("scheme"))
     {
         const std::string scheme = field.at("scheme").text();
@@ -371,6 +372,22 @@ void readSolver(const Field& field, StepOptions& options)
     if (field.has("shock_propagation"))
     {
         options.shockPropagation = field.at("shock_propagation").boolean();
+    }
+    if (field.has("push_out"))
+    {
+        options.pushOut = field.at("push_out").boolean();
+    }
+    if (field.has("push_out_allowance"))
+    {
+        options.pushOutAllowance = field.at("push_out_allowance").nonNegative();
+    }
+    if (field.has("push_out_speed"))
+    {
+        options.pushOutSpeed = field.at("push_out_speed").nonNegative();
+    }
+    if (field.has("push_out_iterations"))
+    {
+        options.pushOutIterations = field.at("push_out_iterations").count(0);
     }
     if (field.has("restitution_threshold"))
     {

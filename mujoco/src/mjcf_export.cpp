@@ -255,6 +255,10 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
     xml << "    <numeric name=\"impulse_contact_thickness\" data=\"" << num(o.contactThickness) << "\"/>\n";
     xml << "    <numeric name=\"impulse_restitution_threshold\" data=\"" << num(o.restitutionThreshold) << "\"/>\n";
     xml << "    <numeric name=\"impulse_shock_propagation\" data=\"" << (o.shockPropagation ? 1 : 0) << "\"/>\n";
+    xml << "    <numeric name=\"impulse_push_out\" data=\"" << (o.pushOut ? 1 : 0) << "\"/>\n";
+    xml << "    <numeric name=\"impulse_push_out_allowance\" data=\"" << num(o.pushOutAllowance) << "\"/>\n";
+    xml << "    <numeric name=\"impulse_push_out_speed\" data=\"" << num(o.pushOutSpeed) << "\"/>\n";
+    xml << "    <numeric name=\"impulse_push_out_iterations\" data=\"" << o.pushOutIterations << "\"/>\n";
     xml << "    <numeric name=\"impulse_mid_step_restitution\" data=\"" << (o.midStepRestitution ? 1 : 0) << "\"/>\n";
     xml << "    <numeric name=\"impulse_time_of_impact_geometry\" data=\"" << (o.timeOfImpactGeometry ? 1 : 0)
         << "\"/>\n";

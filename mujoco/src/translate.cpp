@@ -185,6 +185,10 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
     number("impulse_contact_thickness", 0, 1e300, [&](Real v) { options.contactThickness = v; });
     number("impulse_restitution_threshold", 0, 1e300, [&](Real v) { options.restitutionThreshold = v; });
     number("impulse_shock_propagation", 0, 1, [&](Real v) { options.shockPropagation = v != 0.0; });
+    number("impulse_push_out", 0, 1, [&](Real v) { options.pushOut = v != 0.0; });
+    number("impulse_push_out_allowance", 0, 1e300, [&](Real v) { options.pushOutAllowance = v; });
+    number("impulse_push_out_speed", 0, 1e300, [&](Real v) { options.pushOutSpeed = v; });
+    number("impulse_push_out_iterations", 0, 1e6, [&](Real v) { options.pushOutIterations = static_cast<int>(v); });
     number("impulse_mid_step_restitution", 0, 1, [&](Real v) { options.midStepRestitution = v != 0.0; });
     number("impulse_time_of_impact_geometry", 0, 1, [&](Real v) { options.timeOfImpactGeometry = v != 0.0; });
     if (const auto scheme = custom.text.find("impulse_scheme"); scheme != custom.text.end())
@@ -210,6 +214,10 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
                                         "impulse_contact_thickness",
                                         "impulse_restitution_threshold",
                                         "impulse_shock_propagation",
+                                        "impulse_push_out",
+                                        "impulse_push_out_allowance",
+                                        "impulse_push_out_speed",
+                                        "impulse_push_out_iterations",
                                         "impulse_mid_step_restitution",
                                         "impulse_time_of_impact_geometry",
                                         custom::kRestitution,

@@ -13,6 +13,8 @@
 //                            pairs visited level by level from the ground up
 //   6. shock propagation     one more sweep with eps = 0, level by level, lower levels frozen
 //   7. position update       x += dt v, q = exp(dt w) q, w = I(q)^-1 L
+//   8. push-out              overlaps deeper than an allowance moved apart, positions only,
+//                            level by level with lower levels held still (guendelman.md sec. 9)
 //
 // Each pass sweeps in a fixed order and stops early after a sweep that applies no impulse. The
 // collision pass resolves pair by pair; the contact pass and shock propagation go level by level,
@@ -148,6 +150,11 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     clock.lap(stats.milliseconds.shockPropagation);
     updatePositions(options);
     clock.lap(stats.milliseconds.positionUpdate);
+    if (options.pushOut)
+    {
+        pushOut(options);
+    }
+    clock.lap(stats.milliseconds.pushOut);
 }
 
 void WorldImpl::stepTraditional(const StepOptions& options)
@@ -587,6 +594,52 @@ void WorldImpl::updatePositions(const StepOptions& options)
                         body.rotation = next.rotation;
                         updateDerivedQuantities(body);
                     });
+}
+
+void WorldImpl::pushOut(const StepOptions& options)
+{
+    // At the new poses, in the contact pass's order: each body is moved out of what it rests on,
+    // which has already been moved (or is static) and stays put, then the pairs within the level
+    // share their move. One sweep settles a stack from the ground up; a second catches what the
+    // two-way pairs of a level pushed back into their supports.
+    // the sweeps share one step's move, so an overlap heals at most at pushOutSpeed
+    const PushOutSettings settings{options.pushOutAllowance,
+                                   options.pushOutSpeed * options.dt / std::max(1, options.pushOutIterations)};
+    std::vector<int> moves(islands.size(), 0);
+    parallelFor(
+        threads, islands.size(),
+        [&](std::size_t i, int thread)
+        {
+            const Island& island = islands[i];
+            PushOutScratch& local = scratch[static_cast<std::size_t>(thread)].pushOut;
+            for (int sweep = 0; sweep < options.pushOutIterations; ++sweep)
+            {
+                int moved = 0;
+                for (const Island::Level& level : island.levels)
+                {
+                    for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+                    {
+                        const std::span<const Support> supports(island.supports.data() + island.supportStart[n],
+                                                                island.supportStart[n + 1] - island.supportStart[n]);
+                        moved += pushOutOfSupports(bodies[island.levelBodies[n]], supports, settings, local) ? 1 : 0;
+                    }
+                    for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
+                    {
+                        const BodyPair& pair = pairs[island.twoWayPairs[n]];
+                        moved += pushApart(bodies[pair.a], bodies[pair.b], settings, local) ? 1 : 0;
+                    }
+                }
+                moves[i] += moved;
+                if (moved == 0)
+                {
+                    break;
+                }
+            }
+        });
+    for (const int moved : moves)
+    {
+        stats.pushOutMoves += moved;
+    }
 }
 
 } // namespace impulse

@@ -206,6 +206,18 @@ void World::step(const StepOptions& options)
     {
         throw std::invalid_argument("iterations: collision >= 0, contact >= 1 and pair >= 1 required");
     }
+    if (!(options.pushOutAllowance >= 0.0) || !std::isfinite(options.pushOutAllowance))
+    {
+        throw std::invalid_argument("push_out_allowance: must be a non-negative finite distance");
+    }
+    if (!(options.pushOutSpeed >= 0.0) || !std::isfinite(options.pushOutSpeed))
+    {
+        throw std::invalid_argument("push_out_speed: must be a non-negative finite speed");
+    }
+    if (options.pushOutIterations < 0)
+    {
+        throw std::invalid_argument("push_out_iterations: must be 0 or more");
+    }
     if (options.threads < 0)
     {
         throw std::invalid_argument("threads: must be 0 (one per hardware thread) or a positive count");

@@ -5,6 +5,7 @@
 #include "collision/contact.hpp"
 #include "dynamics/contact_graph.hpp"
 #include "dynamics/pair_resolution.hpp"
+#include "dynamics/push_out.hpp"
 #include "dynamics/rigid_body.hpp"
 
 #include <impulse/world.hpp>
@@ -45,6 +46,7 @@ struct ThreadScratch
 {
     std::vector<ContactPoint> points;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> supportOf; ///< (body, pair), sorted
+    PushOutScratch pushOut;
 };
 
 class WorldImpl
@@ -86,6 +88,7 @@ class WorldImpl
     void solveContacts(const StepOptions& options, const PassSettings& settings);
     void propagateShock(const StepOptions& options, const PassSettings& settings);
     void updatePositions(const StepOptions& options);
+    void pushOut(const StepOptions& options);
 
     void predictAll(const PassSettings& settings);
     int sweepPairs(const Island& island, ThreadScratch& scratch, const PassSettings& settings);

@@ -509,6 +509,25 @@ TEST(SceneLoader, UnknownMaterialInPairOverrideIsRefusedWithItsPath)
                   "/pairs/0/materials/1", "unknown");
 }
 
+TEST(SceneLoader, PushOutSettingsAreRead)
+{
+    const impulse::io::Scene scene =
+        parseScene(edited(R"("contact_iterations": 10})",
+                          R"("contact_iterations": 10, "push_out": false, "push_out_allowance": 2e-4,
+                   "push_out_speed": 3, "push_out_iterations": 4})"),
+                   "test.json");
+    EXPECT_FALSE(scene.options.pushOut);
+    EXPECT_EQ(scene.options.pushOutAllowance, 2e-4);
+    EXPECT_EQ(scene.options.pushOutSpeed, 3.0);
+    EXPECT_EQ(scene.options.pushOutIterations, 4);
+}
+
+TEST(SceneLoader, NegativePushOutSpeedIsRefusedWithItsPath)
+{
+    expectRefused(edited(R"("contact_iterations": 10})", R"("contact_iterations": 10, "push_out_speed": -1})"),
+                  "/solver/push_out_speed", "must not be negative");
+}
+
 TEST(SceneLoader, MisspeltFieldIsRefusedWithItsPath)
 {
     expectRefused(edited(R"("position": [0, 0, 1],)", R"("positon": [0, 0, 1],)"), "/bodies/1/positon", "unknown");
