@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impulse
 {
@@ -129,28 +130,76 @@ Mat3 invInertiaOf(const RigidBody& body)
     return body.immovable() ? Mat3::Zero() : body.invInertiaWorld;
 }
 
-// The coupled collision matrix of a patch (3 rows and columns per point): W_ik maps an impulse at
-// point k to the relative velocity change at point i, through the body always and through the
-// partner when both points touch the same one. Levers are from the body's and partner's centres.
-Eigen::MatrixXd patchCoupling(const RigidBody& body, const std::vector<PatchPoint>& patch,
-                              const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever)
+// The least-squares impulses of a patch: the j of least norm that minimises |W j - t|, W the coupled
+// collision matrix (3 rows and columns per point; W_ik maps an impulse at point k to the relative
+// velocity change at point i, through the body always and through the partner when both points
+// touch the same one). W is never formed: with one block of six columns per movable body,
+// A = J M^-1/2 and W = A A^T. A is 6 columns wide for a body on static
+// supports and 12 wide with one movable partner where W is up to 24 x 24, so j = (A^+)^T A^+ t is
+// found from a decomposition of A, a fraction of the cost of one of W. `reached` is W j, the
+// relative velocity change the impulses give.
+struct PatchLeastSquares
 {
-    const auto n = static_cast<Eigen::Index>(patch.size());
-    Eigen::MatrixXd coupling(3 * n, 3 * n);
-    for (std::size_t i = 0; i < patch.size(); ++i)
+    Eigen::VectorXd impulses;
+    Eigen::VectorXd reached;
+};
+
+PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch,
+                                         const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever,
+                                         const Eigen::VectorXd& target)
+{
+    // the movable bodies, the patch's body first: each owns six columns of A
+    std::vector<const RigidBody*> movable;
+    if (!body.immovable())
     {
-        for (std::size_t k = 0; k < patch.size(); ++k)
+        movable.push_back(&body);
+    }
+    for (const PatchPoint& point : patch)
+    {
+        if (!point.other->immovable() && std::find(movable.begin(), movable.end(), point.other) == movable.end())
         {
-            Mat3 block = couplingMatrix(invMassOf(body), invInertiaOf(body), lever[i], lever[k]);
-            if (patch[i].other == patch[k].other)
-            {
-                const RigidBody& other = *patch[i].other;
-                block += couplingMatrix(invMassOf(other), invInertiaOf(other), partnerLever[i], partnerLever[k]);
-            }
-            coupling.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(k)) = block;
+            movable.push_back(point.other);
         }
     }
-    return coupling;
+    const auto rows = static_cast<Eigen::Index>(3 * patch.size());
+    const auto columns = static_cast<Eigen::Index>(6 * movable.size());
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, columns);
+    for (std::size_t b = 0; b < movable.size(); ++b)
+    {
+        // M^-1/2 of body b: sqrt(1/m) for translation, R diag(sqrt(1/I)) R^T for rotation
+        const RigidBody& mover = *movable[b];
+        const Real rootInvMass = std::sqrt(mover.invMass);
+        const Mat3 rootInvInertia =
+            mover.rotation * mover.invPrincipalInertia.cwiseSqrt().asDiagonal() * mover.rotation.transpose();
+        const auto column = static_cast<Eigen::Index>(6 * b);
+        for (std::size_t k = 0; k < patch.size(); ++k)
+        {
+            // u_rel = u_body - u_partner: the body's columns enter with +, a partner's with -
+            const bool isBody = &mover == &body;
+            if (!isBody && patch[k].other != &mover)
+            {
+                continue;
+            }
+            const Vec3& r = isBody ? lever[k] : partnerLever[k];
+            const Real sign = isBody ? 1.0 : -1.0;
+            Mat3 leverCross;
+            leverCross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+            const auto row = static_cast<Eigen::Index>(3 * k);
+            a.block<3, 3>(row, column) = sign * rootInvMass * Mat3::Identity();
+            a.block<3, 3>(row, column + 3) = -sign * leverCross * rootInvInertia;
+        }
+    }
+    // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide them
+    // on W = A A^T, whose singular values are the squares of A's: relative to the largest, below the
+    // square root of W's round-off
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition;
+    decomposition.setThreshold(std::sqrt(static_cast<Real>(rows) * std::numeric_limits<Real>::epsilon()));
+    decomposition.compute(a);
+    const Eigen::MatrixXd inverse = decomposition.pseudoInverse();
+    PatchLeastSquares result;
+    result.impulses = inverse.transpose() * (inverse * target);
+    result.reached = a * (a.transpose() * result.impulses);
+    return result;
 }
 
 // Target normal velocity of every point of a patch from its normal approach u_n (negative).
@@ -227,8 +276,8 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep[k] * patch[k].contact.normal - velocity[k];
     }
-    const Eigen::MatrixXd coupling = patchCoupling(body, patch, lever, otherLever);
-    const Eigen::VectorXd solved = coupling.completeOrthogonalDecomposition().solve(target);
+    const PatchLeastSquares leastSquares = solvePatchLeastSquares(body, patch, lever, otherLever, target);
+    const Eigen::VectorXd& solved = leastSquares.impulses;
     // Reachable: the least-squares solution meets the targets to 1e-6 of their size, plus round-off
     // (1e-12) of the velocities involved. Exactly consistent for eps = 0; for eps != 0 a patch tilted
     // against its normal makes -eps u_n n slightly non-rigid, a mismatch the next sweeps remove.
@@ -237,7 +286,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         velocityScale += u.norm();
     }
-    if (!solved.allFinite() || (coupling * solved - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
+    if (!solved.allFinite() || (leastSquares.reached - target).norm() > 1e-6 * target.norm() + 1e-12 * velocityScale)
     {
         return false; // the targets are not reachable together
     }
@@ -301,7 +350,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     const std::size_t n = patch.size();
     std::vector<Row> rows(n);
     std::vector<Real> approach(n);
-    std::vector<Vec3> levers(n); // the rows' levers, as patchCoupling and applyToPatch take them
+    std::vector<Vec3> levers(n); // the rows' levers, as solvePatchLeastSquares and applyToPatch take them
     std::vector<Vec3> partnerLevers(n);
     for (std::size_t k = 0; k < n; ++k)
     {
@@ -364,8 +413,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         {
             target.segment<3>(3 * static_cast<Eigen::Index>(i)) = rows[i].keep * rows[i].normal - relative(rows[i]);
         }
-        const Eigen::MatrixXd coupling = patchCoupling(body, patch, levers, partnerLevers);
-        const Eigen::VectorXd start = coupling.completeOrthogonalDecomposition().solve(target);
+        const Eigen::VectorXd start = solvePatchLeastSquares(body, patch, levers, partnerLevers, target).impulses;
         if (start.allFinite())
         {
             for (std::size_t k = 0; k < n; ++k)
