@@ -31,24 +31,41 @@ Real separation(const OrientedBox& a, const OrientedBox& b, const Vec3& axis)
     return std::abs((b.centre - a.centre).dot(axis)) - projectedRadius(a, axis) - projectedRadius(b, axis);
 }
 
-// Clips a convex polygon to the half-space {p : normal . p <= offset}.
-std::vector<Vec3> clip(const std::vector<Vec3>& polygon, const Vec3& normal, Real offset)
+// A convex polygon in fixed storage (the clip runs at every re-detection): a box face has four
+// corners and each of the four clips to the reference face's sides adds at most one. Round-off can
+// make a nearly degenerate polygon cross a plane more than twice; corners beyond the storage are
+// dropped then, which only thins out a patch that is already redundant.
+struct FacePolygon
 {
-    std::vector<Vec3> result;
-    result.reserve(polygon.size() + 1);
-    for (std::size_t i = 0; i < polygon.size(); ++i)
+    std::array<Vec3, 16> corners;
+    std::size_t size = 0;
+
+    void add(const Vec3& corner)
     {
-        const Vec3& p = polygon[i];
-        const Vec3& q = polygon[(i + 1) % polygon.size()];
+        if (size < corners.size())
+        {
+            corners[size++] = corner;
+        }
+    }
+};
+
+// Clips a convex polygon to the half-space {p : normal . p <= offset}.
+FacePolygon clip(const FacePolygon& polygon, const Vec3& normal, Real offset)
+{
+    FacePolygon result;
+    for (std::size_t i = 0; i < polygon.size; ++i)
+    {
+        const Vec3& p = polygon.corners[i];
+        const Vec3& q = polygon.corners[(i + 1) % polygon.size];
         const Real dp = normal.dot(p) - offset;
         const Real dq = normal.dot(q) - offset;
         if (dp <= 0.0)
         {
-            result.push_back(p);
+            result.add(p);
         }
         if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0))
         {
-            result.push_back(p + (dp / (dp - dq)) * (q - p));
+            result.add(p + (dp / (dp - dq)) * (q - p));
         }
     }
     return result;
@@ -82,10 +99,14 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
         incident.centre + incidentSign * incident.half[incidentAxis] * incident.axes.col(incidentAxis);
     const Vec3 du = incident.half[u] * incident.axes.col(u);
     const Vec3 dv = incident.half[v] * incident.axes.col(v);
-    std::vector<Vec3> polygon{faceCentre + du + dv, faceCentre - du + dv, faceCentre - du - dv, faceCentre + du - dv};
+    FacePolygon polygon;
+    polygon.add(faceCentre + du + dv);
+    polygon.add(faceCentre - du + dv);
+    polygon.add(faceCentre - du - dv);
+    polygon.add(faceCentre + du - dv);
 
     // clip to the four side planes of the reference face
-    for (int k = 0; k < 3 && !polygon.empty(); ++k)
+    for (int k = 0; k < 3 && polygon.size > 0; ++k)
     {
         if (k == referenceAxis)
         {
@@ -98,8 +119,9 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
     }
 
     const Real faceOffset = normal.dot(reference.centre) + reference.half[referenceAxis];
-    for (const Vec3& p : polygon)
+    for (std::size_t i = 0; i < polygon.size; ++i)
     {
+        const Vec3& p = polygon.corners[i];
         const Real phi = normal.dot(p) - faceOffset;
         if (phi < threshold)
         {
