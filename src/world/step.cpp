@@ -563,9 +563,8 @@ int WorldImpl::sweepLevels(const Island& island, ThreadScratch& local, Real eps,
         }
         for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
         {
-            const std::span<const Support> supports(island.supports.data() + island.supportStart[n],
-                                                    island.supportStart[n + 1] - island.supportStart[n]);
-            applied += resolveOnSupports(bodies[island.levelBodies[n]], supports, eps, settings, local.points);
+            applied +=
+                resolveOnSupports(bodies[island.levelBodies[n]], island.supportsOf(n), eps, settings, local.points);
         }
         for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
         {
@@ -606,36 +605,35 @@ void WorldImpl::pushOut(const StepOptions& options)
     const PushOutSettings settings{options.pushOutAllowance,
                                    options.pushOutSpeed * options.dt / std::max(1, options.pushOutIterations)};
     std::vector<int> moves(islands.size(), 0);
-    parallelFor(
-        threads, islands.size(),
-        [&](std::size_t i, int thread)
-        {
-            const Island& island = islands[i];
-            PushOutScratch& local = scratch[static_cast<std::size_t>(thread)].pushOut;
-            for (int sweep = 0; sweep < options.pushOutIterations; ++sweep)
-            {
-                int moved = 0;
-                for (const Island::Level& level : island.levels)
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
                 {
-                    for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+                    const Island& island = islands[i];
+                    PushOutScratch& local = scratch[static_cast<std::size_t>(thread)].pushOut;
+                    for (int sweep = 0; sweep < options.pushOutIterations; ++sweep)
                     {
-                        const std::span<const Support> supports(island.supports.data() + island.supportStart[n],
-                                                                island.supportStart[n + 1] - island.supportStart[n]);
-                        moved += pushOutOfSupports(bodies[island.levelBodies[n]], supports, settings, local) ? 1 : 0;
+                        int moved = 0;
+                        for (const Island::Level& level : island.levels)
+                        {
+                            for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+                            {
+                                const bool pushed = pushOutOfSupports(bodies[island.levelBodies[n]],
+                                                                      island.supportsOf(n), settings, local);
+                                moved += pushed ? 1 : 0;
+                            }
+                            for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
+                            {
+                                const BodyPair& pair = pairs[island.twoWayPairs[n]];
+                                moved += pushApart(bodies[pair.a], bodies[pair.b], settings, local) ? 1 : 0;
+                            }
+                        }
+                        moves[i] += moved;
+                        if (moved == 0)
+                        {
+                            break;
+                        }
                     }
-                    for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
-                    {
-                        const BodyPair& pair = pairs[island.twoWayPairs[n]];
-                        moved += pushApart(bodies[pair.a], bodies[pair.b], settings, local) ? 1 : 0;
-                    }
-                }
-                moves[i] += moved;
-                if (moved == 0)
-                {
-                    break;
-                }
-            }
-        });
+                });
     for (const int moved : moves)
     {
         stats.pushOutMoves += moved;

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct Island
     std::vector<Support> supports;           ///< in pair order
     std::vector<std::uint32_t> twoWayPairs;  ///< pairs of two bodies of the same level, in pair order
     std::vector<std::uint32_t> frozen;       ///< per level: the lower-level bodies shock propagation freezes
+
+    /// What levelBodies[n] rests on.
+    std::span<const Support> supportsOf(std::uint32_t n) const
+    {
+        return {supports.data() + supportStart[n], supportStart[n + 1] - supportStart[n]};
+    }
 };
 
 /// What one worker thread reuses from pass to pass.
