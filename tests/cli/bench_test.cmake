@@ -12,28 +12,6 @@ cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
 start_checks(bench_test.cmake IMPULSE SCENES WORK)
 
-# Runs impulse in WORK (not the source tree, so that relative scene paths must be resolved) with
-# the given arguments; sets run_rc, run_out, run_err and run_command.
-macro(run_impulse)
-    execute_process(
-        COMMAND "${IMPULSE}" ${ARGN}
-        WORKING_DIRECTORY "${WORK}"
-        RESULT_VARIABLE run_rc
-        OUTPUT_VARIABLE run_out
-        ERROR_VARIABLE run_err
-        TIMEOUT 120)
-    string(STRIP "${run_err}" run_err)
-    string(JOIN " " run_command "impulse" ${ARGN})
-endmacro()
-
-macro(expect_success)
-    if(run_rc STREQUAL "0")
-        check_passed("${run_command} exits 0")
-    else()
-        check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-    endif()
-endmacro()
-
 set(hex16 "[0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f]")
 set(hex16 "${hex16}${hex16}")
 set(number "[0-9]+\\.[0-9]+")

@@ -4,6 +4,7 @@
 #
 #   include(check_harness.cmake)
 #   start_checks(<script name> <required variable>...)  # then check_passed / check_failed ...
+#   run_impulse(<arguments>...)                         # then expect_success() or checks of run_*
 #   finish_checks(<what was checked>)                   # FATAL_ERROR listing every failure
 
 # Refuses to run without the script's -D variables, then empties WORK and the failure list.
@@ -32,6 +33,30 @@ endfunction()
 function(check_passed what)
     message(STATUS "ok: ${what}")
 endfunction()
+
+# Runs ${IMPULSE} with the given arguments in WORK, so that a file written to the current folder
+# lands in the scratch folder; sets run_rc, run_out, run_err (stripped) and run_command. The timeout
+# guards the "never hangs" promise: every run of the scripts simulates at most a second.
+macro(run_impulse)
+    execute_process(
+        COMMAND "${IMPULSE}" ${ARGN}
+        WORKING_DIRECTORY "${WORK}"
+        RESULT_VARIABLE run_rc
+        OUTPUT_VARIABLE run_out
+        ERROR_VARIABLE run_err
+        TIMEOUT 120)
+    string(STRIP "${run_err}" run_err)
+    string(JOIN " " run_command "impulse" ${ARGN})
+endmacro()
+
+# Checks that the last run_impulse exited 0.
+macro(expect_success)
+    if(run_rc STREQUAL "0")
+        check_passed("${run_command} exits 0")
+    else()
+        check_failed("${run_command} exited with ${run_rc}: ${run_err}")
+    endif()
+endmacro()
 
 # True (in `result`) when run_rc is an exit code other than 0, not a signal or a timeout, which
 # execute_process reports as text ("Child aborted", "Segmentation fault", ...).

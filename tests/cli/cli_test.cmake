@@ -12,19 +12,6 @@ cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
 start_checks(cli_test.cmake IMPULSE SCENES DATA WORK)
 
-# Runs impulse with the given arguments; sets run_rc, run_out and run_err. A timeout guards the
-# "never hangs" promise: every run below simulates at most half a second.
-macro(run_impulse)
-    execute_process(
-        COMMAND "${IMPULSE}" ${ARGN}
-        RESULT_VARIABLE run_rc
-        OUTPUT_VARIABLE run_out
-        ERROR_VARIABLE run_err
-        TIMEOUT 120)
-    string(STRIP "${run_err}" run_err)
-    string(JOIN " " run_command "impulse" ${ARGN})
-endmacro()
-
 # Counts the data rows of a trajectory CSV into `rows` after checking its header and that every
 # row is 15 finite numbers (body index 0: the reference scenes below have one dynamic body).
 function(check_trajectory csv expected_rows)
@@ -78,11 +65,7 @@ set(scene "${SCENES}/ball_drop_elastic.json")
 
 # ---- a trajectory: 0.5 s at dt 1 ms is 500 steps plus the initial state -------------------------
 run_impulse(run "${scene}" --duration 0.5 --out "${WORK}/a.csv")
-if(run_rc STREQUAL "0")
-    check_passed("${run_command} exits 0")
-else()
-    check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-endif()
+expect_success()
 check_trajectory("${WORK}/a.csv" 501)
 if(EXISTS "${WORK}/a.csv")
     file(STRINGS "${WORK}/a.csv" lines)
@@ -113,20 +96,12 @@ endif()
 
 # ---- --every 100: steps 0, 100, ..., 500 -----------------------------------------------------
 run_impulse(run "${scene}" --duration 0.5 --every 100 --out "${WORK}/every.csv")
-if(run_rc STREQUAL "0")
-    check_passed("${run_command} exits 0")
-else()
-    check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-endif()
+expect_success()
 check_trajectory("${WORK}/every.csv" 6)
 
 # ---- help ------------------------------------------------------------------------------------
 run_impulse(run --help)
-if(run_rc STREQUAL "0")
-    check_passed("${run_command} exits 0")
-else()
-    check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-endif()
+expect_success()
 foreach(option --dt --duration --out --every)
     if(run_out MATCHES "${option}")
         check_passed("impulse run --help mentions ${option}")
