@@ -256,10 +256,11 @@ int stepsOf(const impulse::io::Scene& scene, const Settings& settings)
     return static_cast<int>(std::lround(scene.duration / scene.options.dt));
 }
 
-Run runImpulse(impulse::io::Scene& scene, const Settings& settings)
+// Steps warm-up and measured steps alike with stepOnce(k), timing each, and counts the contacts
+// (contactsNow(), outside the timing) of the measured ones: the same harness for both engines.
+template <typename StepOnce, typename ContactsNow>
+Run timeSteps(const Settings& settings, int steps, StepOnce stepOnce, ContactsNow contactsNow)
 {
-    scene.options.threads = settings.threads;
-    const int steps = stepsOf(scene, settings);
     Run run;
     run.stepMs.reserve(static_cast<std::size_t>(steps));
     const auto begin = Clock::now();
@@ -267,17 +268,26 @@ Run runImpulse(impulse::io::Scene& scene, const Settings& settings)
     for (int k = 0; k < settings.warmUp + steps; ++k)
     {
         const auto start = Clock::now();
-        scene.world.step(scene.options);
+        stepOnce(k);
         const double ms = milliseconds(start);
         if (k >= settings.warmUp)
         {
             run.stepMs.push_back(ms);
-            run.contacts += scene.world.lastStepStats().contactPairs;
+            run.contacts += contactsNow();
         }
     }
     run.totalSeconds = milliseconds(begin) / 1000.0;
     run.cpuSeconds = cpuSecondsSince(cpuBegin);
     run.contacts /= std::max(1, steps);
+    return run;
+}
+
+Run runImpulse(impulse::io::Scene& scene, const Settings& settings)
+{
+    scene.options.threads = settings.threads;
+    Run run = timeSteps(
+        settings, stepsOf(scene, settings), [&](int) { scene.world.step(scene.options); },
+        [&] { return scene.world.lastStepStats().contactPairs; });
     for (const impulse::BodyId id : dynamicBodies(scene.world))
     {
         const impulse::BodyState state = scene.world.state(id);
@@ -298,33 +308,20 @@ int touchingManifolds(btDispatcher& dispatcher)
 
 Run runBullet(BulletScene& bullet, const impulse::io::Scene& scene, const Settings& settings)
 {
-    const int steps = stepsOf(scene, settings);
     const auto dt = static_cast<btScalar>(scene.options.dt);
-    Run run;
-    run.stepMs.reserve(static_cast<std::size_t>(steps));
-    const auto begin = Clock::now();
-    const std::clock_t cpuBegin = std::clock();
-    for (int k = 0; k < settings.warmUp + steps; ++k)
+    const auto stepOnce = [&](int k)
     {
-        const auto start = Clock::now();
         // maxSubSteps 0, Bullet's variable time step: one internal step of exactly dt by construction.
         // (dt, 1, dt) also takes one per call, through its accumulator of fixed steps.
         const int internalSteps = bullet.world->stepSimulation(dt, 0);
-        const double ms = milliseconds(start);
         if (internalSteps != 1)
         {
             throw std::runtime_error("Bullet took " + std::to_string(internalSteps) + " internal steps at step " +
                                      std::to_string(k) + "; expected exactly one");
         }
-        if (k >= settings.warmUp)
-        {
-            run.stepMs.push_back(ms);
-            run.contacts += touchingManifolds(*bullet.dispatcher);
-        }
-    }
-    run.totalSeconds = milliseconds(begin) / 1000.0;
-    run.cpuSeconds = cpuSecondsSince(cpuBegin);
-    run.contacts /= std::max(1, steps);
+    };
+    Run run =
+        timeSteps(settings, stepsOf(scene, settings), stepOnce, [&] { return touchingManifolds(*bullet.dispatcher); });
     for (const btRigidBody* body : bullet.dynamicBodies)
     {
         const btTransform& transform = body->getCenterOfMassTransform();
