@@ -535,16 +535,13 @@ void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, cons
 namespace
 {
 
-// The vertex-and-edge query of two meshes, which collideMeshMesh answers from memory when it can.
+// The vertex-and-edge query of two meshes within reach of each other, which collideMeshMesh answers
+// from memory when it can.
 void computeMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                      std::vector<ContactPoint>& out)
 {
     const MeshGeometry& meshA = *a.geometry;
     const MeshGeometry& meshB = *b.geometry;
-    if (farApart(poseA, meshA.boundingRadius(), poseB, meshB.boundingRadius(), threshold))
-    {
-        return;
-    }
     thread_local VertexBounds boundsA;
     thread_local VertexBounds boundsB;
     const MeshTarget targetA(meshA, poseA);
@@ -655,6 +652,11 @@ class MeshPairMemo
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                      std::vector<ContactPoint>& out)
 {
+    // bodies too far apart for any point are told apart before any memory is spent on them
+    if (farApart(poseA, a.geometry->boundingRadius(), poseB, b.geometry->boundingRadius(), threshold))
+    {
+        return;
+    }
     thread_local MeshPairMemo memo;
     const MeshPairMemo::Key key = MeshPairMemo::keyOf(*a.geometry, poseA, *b.geometry, poseB, threshold);
     if (const std::vector<ContactPoint>* known = memo.find(key))
