@@ -56,7 +56,7 @@ struct StepOptions
     /// as the bodies rest on each other.
     bool pushOut = true;
     Real pushOutAllowance = 1e-4; ///< m; shallower overlaps are left alone
-    Real pushOutSpeed = 10.0;     ///< m/s; a body leaves what it rests on at most this fast
+    Real pushOutSpeed = 10.0;     ///< m/s; no body moves further than this times dt in one step
     int pushOutIterations = 2;    ///< sweeps up the levels; stops early after one that moves nothing
     /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
     /// hardware thread. Trajectories are bit-identical whatever the number.

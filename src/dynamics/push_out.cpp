@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impulse
 {
@@ -32,9 +33,8 @@ bool deeperThan(const std::vector<ContactPoint>& points, Real allowance)
     return std::any_of(points.begin(), points.end(), [&](const ContactPoint& p) { return p.phi < -allowance; });
 }
 
-// Least-norm dx with phi_i + n_i . dx >= 0 for all points (projected Gauss-Seidel on lambda_i >= 0),
-// shortened to maxDistance.
-Vec3 separatingMove(const std::vector<ContactPoint>& points, Real maxDistance, std::vector<Real>& lambda)
+// Least-norm dx with phi_i + n_i . dx >= 0 for all points (projected Gauss-Seidel on lambda_i >= 0).
+Vec3 separatingMove(const std::vector<ContactPoint>& points, std::vector<Real>& lambda)
 {
     lambda.assign(points.size(), 0.0);
     Vec3 move = Vec3::Zero();
@@ -58,17 +58,19 @@ Vec3 separatingMove(const std::vector<ContactPoint>& points, Real maxDistance, s
             break;
         }
     }
-    const Real length = move.norm();
-    if (length > maxDistance)
-    {
-        move *= maxDistance / length;
-    }
     return move;
+}
+
+// `move` shortened to at most `reach`.
+Vec3 shortened(const Vec3& move, Real reach)
+{
+    const Real length = move.norm();
+    return length > reach ? Vec3(move * (std::max(reach, 0.0) / length)) : move;
 }
 
 } // namespace
 
-bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, const PushOutSettings& settings,
+bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real allowance, Real reach,
                        PushOutScratch& scratch)
 {
     std::vector<ContactPoint>& points = scratch.points;
@@ -79,29 +81,40 @@ bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, const
         // the normal points from the support toward the body: the direction the body must go
         collideShapes(body.shape, pose, support.body->shape, support.body->pose(), 0.0, points);
     }
-    if (!deeperThan(points, settings.allowance))
+    if (!deeperThan(points, allowance))
     {
         return false;
     }
-    const Vec3 move = separatingMove(points, settings.maxDistance, scratch.lambda);
+    const Vec3 move = shortened(separatingMove(points, scratch.lambda), reach);
     body.position += move;
     return move != Vec3::Zero();
 }
 
-bool pushApart(RigidBody& a, RigidBody& b, const PushOutSettings& settings, PushOutScratch& scratch)
+bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real reachB, PushOutScratch& scratch)
 {
     std::vector<ContactPoint>& points = scratch.points;
     points.clear();
     collideShapes(a.shape, a.pose(), b.shape, b.pose(), 0.0, points);
-    if (!deeperThan(points, settings.allowance))
+    if (!deeperThan(points, allowance))
     {
         return false;
     }
-    // the relative move a - b separates the pair; each body takes its inverse-mass share of it
-    const Vec3 relative = separatingMove(points, settings.maxDistance, scratch.lambda);
+    // the relative move a - b separates the pair; each body takes its inverse-mass share of it, and
+    // the whole move is shortened (not each share) so that the centre of mass still stays put
     const Real shareA = a.invMass / (a.invMass + b.invMass);
+    const Real shareB = 1.0 - shareA;
+    Real reach = std::numeric_limits<Real>::infinity();
+    if (shareA > 0.0)
+    {
+        reach = std::min(reach, reachA / shareA);
+    }
+    if (shareB > 0.0)
+    {
+        reach = std::min(reach, reachB / shareB);
+    }
+    const Vec3 relative = shortened(separatingMove(points, scratch.lambda), reach);
     a.position += shareA * relative;
-    b.position -= (1.0 - shareA) * relative;
+    b.position -= shareB * relative;
     return relative != Vec3::Zero();
 }
 

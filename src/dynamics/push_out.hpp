@@ -11,13 +11,6 @@
 namespace impulse
 {
 
-/// How far push-out goes (StepOptions::pushOut*).
-struct PushOutSettings
-{
-    Real allowance = 0.0;   ///< m; overlaps no deeper than this are left to the contact pass
-    Real maxDistance = 0.0; ///< m; the longest move of one push
-};
-
 /// What a push reuses from one call to the next (one per worker thread).
 struct PushOutScratch
 {
@@ -26,14 +19,15 @@ struct PushOutScratch
 };
 
 /// Moves `body`, never its velocity, out of everything it rests on (the supports stay put): when
-/// some point of the body lies deeper than the allowance inside a support, the body is translated by
+/// some point of the body lies deeper than `allowance` inside a support, the body is translated by
 /// the shortest move that brings every one of its points with those supports to phi >= 0 (to first
-/// order), at most maxDistance. Returns whether it moved.
-bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, const PushOutSettings& settings,
+/// order), shortened to at most `reach`. Returns whether it moved.
+bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real allowance, Real reach,
                        PushOutScratch& scratch);
 
-/// The same for two bodies of one level: the move is shared in proportion to inverse mass, so the
-/// pair's centre of mass stays where it was. Returns whether they moved.
-bool pushApart(RigidBody& a, RigidBody& b, const PushOutSettings& settings, PushOutScratch& scratch);
+/// The same for a pair that overlaps deeper than `allowance`: the move is shared in proportion to
+/// inverse mass, so the pair's centre of mass stays where it was (a static body takes no share),
+/// and shortened so that neither body moves further than its reach. Returns whether they moved.
+bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real reachB, PushOutScratch& scratch);
 
 } // namespace impulse

@@ -39,6 +39,10 @@ namespace impulse
 namespace
 {
 
+// Push-out's two-way relaxation of what the level sweeps leave: in the thousand-body piles a few
+// sweeps clear it; the cap bounds the cost when a pile is still being compressed
+constexpr int kPushOutSettleSweeps = 16;
+
 PassSettings baseSettings(const StepOptions& options, const Vec3& gravity)
 {
     PassSettings settings;
@@ -597,47 +601,102 @@ void WorldImpl::updatePositions(const StepOptions& options)
 
 void WorldImpl::pushOut(const StepOptions& options)
 {
-    // At the new poses, in the contact pass's order: each body is moved out of what it rests on,
-    // which has already been moved (or is static) and stays put, then the pairs within the level
-    // share their move. One sweep settles a stack from the ground up; a second catches what the
-    // two-way pairs of a level pushed back into their supports.
-    // the sweeps share one step's move, so an overlap heals at most at pushOutSpeed
-    const PushOutSettings settings{options.pushOutAllowance,
-                                   options.pushOutSpeed * options.dt / std::max(1, options.pushOutIterations)};
+    pushOrigins.resize(bodies.size());
+    lastPushSweep.assign(bodies.size(), -1); // static bodies never move
     std::vector<int> moves(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
-                {
-                    const Island& island = islands[i];
-                    PushOutScratch& local = scratch[static_cast<std::size_t>(thread)].pushOut;
-                    for (int sweep = 0; sweep < options.pushOutIterations; ++sweep)
-                    {
-                        int moved = 0;
-                        for (const Island::Level& level : island.levels)
-                        {
-                            for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
-                            {
-                                const bool pushed = pushOutOfSupports(bodies[island.levelBodies[n]],
-                                                                      island.supportsOf(n), settings, local);
-                                moved += pushed ? 1 : 0;
-                            }
-                            for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
-                            {
-                                const BodyPair& pair = pairs[island.twoWayPairs[n]];
-                                moved += pushApart(bodies[pair.a], bodies[pair.b], settings, local) ? 1 : 0;
-                            }
-                        }
-                        moves[i] += moved;
-                        if (moved == 0)
-                        {
-                            break;
-                        }
-                    }
-                });
+                { moves[i] = pushOutIsland(islands[i], scratch[static_cast<std::size_t>(thread)].pushOut, options); });
     for (const int moved : moves)
     {
         stats.pushOutMoves += moved;
     }
+}
+
+int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const StepOptions& options)
+{
+    // how far a body may still go this step: it leaves an overlap at most at pushOutSpeed
+    const Real stepReach = options.pushOutSpeed * options.dt;
+    for (const std::uint32_t i : island.bodies)
+    {
+        pushOrigins[i] = bodies[i].position;
+    }
+    const auto reach = [&](std::uint32_t i)
+    { return bodies[i].dynamic ? stepReach - (bodies[i].position - pushOrigins[i]).norm() : 0.0; };
+    const Real allowance = options.pushOutAllowance;
+    int moves = 0;
+    int sweep = 0;
+
+    // At the new poses, in the contact pass's order: each body is moved out of what it rests on,
+    // which has already been moved (or is static) and stays put, then the pairs within the level
+    // share their move. One sweep settles a stack from the ground up; a second catches what the
+    // two-way pairs of a level pushed back into their supports.
+    bool settled = false;
+    for (; sweep < options.pushOutIterations && !settled; ++sweep)
+    {
+        settled = true;
+        for (const Island::Level& level : island.levels)
+        {
+            for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+            {
+                const std::uint32_t i = island.levelBodies[n];
+                if (pushOutOfSupports(bodies[i], island.supportsOf(n), allowance, reach(i), local))
+                {
+                    lastPushSweep[i] = sweep;
+                    settled = false;
+                    ++moves;
+                }
+            }
+            for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
+            {
+                const BodyPair& pair = pairs[island.twoWayPairs[n]];
+                if (pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+                {
+                    lastPushSweep[pair.a] = lastPushSweep[pair.b] = sweep;
+                    settled = false;
+                    ++moves;
+                }
+            }
+        }
+    }
+    if (settled)
+    {
+        return moves;
+    }
+
+    // The levels order bodies by how they move, not by where they are, so in a dense pile a body
+    // may count as a "support" something that presses on it from the side or from above; no move of
+    // the upper body alone then clears both. What is left is relaxed two-way, every pair sharing its
+    // move by inverse mass, Gauss-Seidel over the pairs of bodies that moved since they were last
+    // looked at. Every overlapping pair has such a body: pairs whose bodies never moved were found
+    // clear in the first sweep.
+    for (int settleSweep = 0; settleSweep < kPushOutSettleSweeps && !settled; ++settleSweep, ++sweep)
+    {
+        settled = true;
+        // the first settle sweep looks at every pair a level sweep moved (at all of them if none ran)
+        const int movedSince = settleSweep > 0 ? sweep - 1 : (sweep > 0 ? 0 : -1);
+        for (const std::uint32_t k : island.pairs)
+        {
+            const BodyPair& pair = pairs[k];
+            if (std::max(lastPushSweep[pair.a], lastPushSweep[pair.b]) < movedSince)
+            {
+                continue;
+            }
+            if (pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+            {
+                for (const std::uint32_t i : {pair.a, pair.b})
+                {
+                    if (bodies[i].dynamic)
+                    {
+                        lastPushSweep[i] = sweep;
+                    }
+                }
+                settled = false;
+                ++moves;
+            }
+        }
+    }
+    return moves;
 }
 
 } // namespace impulse

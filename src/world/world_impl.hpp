@@ -75,6 +75,8 @@ class WorldImpl
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
     std::vector<Pose> probePoses;          ///< per body: predicted with the new velocity v + dt a
+    std::vector<Vec3> pushOrigins;         ///< per body: its position before push-out
+    std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
     std::vector<ThreadScratch> scratch;    ///< one per worker thread
     int threads = 1;                       ///< worker threads of this step
 
@@ -96,6 +98,7 @@ class WorldImpl
     void propagateShock(const StepOptions& options, const PassSettings& settings);
     void updatePositions(const StepOptions& options);
     void pushOut(const StepOptions& options);
+    int pushOutIsland(const Island& island, PushOutScratch& scratch, const StepOptions& options);
 
     void predictAll(const PassSettings& settings);
     int sweepPairs(const Island& island, ThreadScratch& scratch, const PassSettings& settings);
