@@ -163,7 +163,11 @@ PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vecto
     }
     const auto rows = static_cast<Eigen::Index>(3 * patch.size());
     const auto columns = static_cast<Eigen::Index>(6 * movable.size());
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, columns);
+    // kept per thread: a patch of the size of an earlier one reuses their storage
+    thread_local Eigen::MatrixXd a;
+    thread_local Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition;
+    thread_local Eigen::MatrixXd inverse;
+    a.setZero(rows, columns);
     for (std::size_t b = 0; b < movable.size(); ++b)
     {
         // M^-1/2 of body b: sqrt(1/m) for translation, R diag(sqrt(1/I)) R^T for rotation
@@ -192,10 +196,9 @@ PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vecto
     // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide them
     // on W = A A^T, whose singular values are the squares of A's: relative to the largest, below the
     // square root of W's round-off
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition;
     decomposition.setThreshold(std::sqrt(static_cast<Real>(rows) * std::numeric_limits<Real>::epsilon()));
     decomposition.compute(a);
-    const Eigen::MatrixXd inverse = decomposition.pseudoInverse();
+    inverse = decomposition.pseudoInverse();
     PatchLeastSquares result;
     result.impulses = inverse.transpose() * (inverse * target);
     result.reached = a * (a.transpose() * result.impulses);
