@@ -166,7 +166,6 @@ PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vecto
     // kept per thread: a patch of the size of an earlier one reuses their storage
     thread_local Eigen::MatrixXd a;
     thread_local Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition;
-    thread_local Eigen::MatrixXd inverse;
     a.setZero(rows, columns);
     for (std::size_t b = 0; b < movable.size(); ++b)
     {
@@ -198,9 +197,10 @@ PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vecto
     // square root of W's round-off
     decomposition.setThreshold(std::sqrt(static_cast<Real>(rows) * std::numeric_limits<Real>::epsilon()));
     decomposition.compute(a);
-    inverse = decomposition.pseudoInverse();
+    // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse
+    const Eigen::VectorXd leastNorm = decomposition.solve(target);
     PatchLeastSquares result;
-    result.impulses = inverse.transpose() * (inverse * target);
+    result.impulses = decomposition.transpose().solve(leastNorm);
     result.reached = a * (a.transpose() * result.impulses);
     return result;
 }
