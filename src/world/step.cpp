@@ -626,6 +626,23 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
     const Real allowance = options.pushOutAllowance;
     int moves = 0;
     int sweep = 0;
+    // pushes a pair apart; when they move, marks its dynamic bodies as moved in this sweep
+    const auto pushPair = [&](const BodyPair& pair)
+    {
+        if (!pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+        {
+            return false;
+        }
+        for (const std::uint32_t i : {pair.a, pair.b})
+        {
+            if (bodies[i].dynamic)
+            {
+                lastPushSweep[i] = sweep;
+            }
+        }
+        ++moves;
+        return true;
+    };
 
     // At the new poses, in the contact pass's order: each body is moved out of what it rests on,
     // which has already been moved (or is static) and stays put, then the pairs within the level
@@ -649,12 +666,9 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
             }
             for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
             {
-                const BodyPair& pair = pairs[island.twoWayPairs[n]];
-                if (pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+                if (pushPair(pairs[island.twoWayPairs[n]]))
                 {
-                    lastPushSweep[pair.a] = lastPushSweep[pair.b] = sweep;
                     settled = false;
-                    ++moves;
                 }
             }
         }
@@ -682,17 +696,9 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
             {
                 continue;
             }
-            if (pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+            if (pushPair(pair))
             {
-                for (const std::uint32_t i : {pair.a, pair.b})
-                {
-                    if (bodies[i].dynamic)
-                    {
-                        lastPushSweep[i] = sweep;
-                    }
-                }
                 settled = false;
-                ++moves;
             }
         }
     }
