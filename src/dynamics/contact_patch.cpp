@@ -408,8 +408,41 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         b.v -= b.invMass * j;
         b.w -= b.invInertia * row.partnerLever.cross(j);
     };
-    // warm start: the least-squares impulses of the coupled system (as in applyPatchImpulse), each
-    // projected into its cone; Gauss-Seidel alone converges slowly on so redundant a set of points
+    // The raw relative velocities (without the mid-step term) before any impulse: with them the
+    // kinetic energy the rows' impulses add is sum_k j_k . (u_k + u_k') / 2, u_k' the velocities now
+    // (exact, the velocities being linear in the impulses), to be compared with the round-off of
+    // its terms, sum_k |j_k| (|u_k| + |u_k'|) / 2.
+    std::vector<Vec3> initial(n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        initial[k] = relative(rows[k]) - rows[k].correction * rows[k].normal;
+    }
+    const auto addsEnergy = [&]
+    {
+        Real work = 0.0;
+        Real scale = 0.0;
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            const Vec3 j = rows[k].load * rows[k].normal + rows[k].friction;
+            const Vec3 now = relative(rows[k]) - rows[k].correction * rows[k].normal;
+            work += 0.5 * j.dot(initial[k] + now);
+            scale += 0.5 * j.norm() * (initial[k].norm() + now.norm());
+        }
+        return work > 1e-9 * scale;
+    };
+    const std::vector<Motion> untouched = motions;
+    const auto reset = [&]
+    {
+        motions = untouched;
+        for (Row& row : rows)
+        {
+            row.load = 0.0;
+            row.friction = Vec3::Zero();
+        }
+    };
+
+    // Warm start: the least-squares impulses of the coupled system (as in applyPatchImpulse), each
+    // projected into its cone; Gauss-Seidel alone converges slowly on so redundant a set of points.
     {
         Eigen::VectorXd target(static_cast<Eigen::Index>(3 * n));
         for (std::size_t i = 0; i < n; ++i)
@@ -434,34 +467,60 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
             }
         }
     }
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration)
+    const auto gaussSeidel = [&]
     {
-        Real change = 0.0;
-        Real largest = 0.0;
-        for (std::size_t k = 0; k < n; ++k)
+        for (int iteration = 0; iteration < kMaxIterations; ++iteration)
         {
-            Row& row = rows[k];
-            const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - relative(row).dot(row.normal)));
-            push(row, (load - row.load) * row.normal);
-            change = std::max(change, std::abs(load - row.load));
-            largest = std::max(largest, load);
-            row.load = load;
-
-            const Vec3 u = relative(row);
-            Vec3 friction = row.friction - row.tangentMass1 * u.dot(row.tangent1) * row.tangent1 -
-                            row.tangentMass2 * u.dot(row.tangent2) * row.tangent2;
-            const Real limit = patch[k].friction * row.load;
-            if (friction.norm() > limit)
+            Real change = 0.0;
+            Real largest = 0.0;
+            for (std::size_t k = 0; k < n; ++k)
             {
-                friction *= limit / friction.norm();
+                Row& row = rows[k];
+                const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - relative(row).dot(row.normal)));
+                push(row, (load - row.load) * row.normal);
+                change = std::max(change, std::abs(load - row.load));
+                largest = std::max(largest, load);
+                row.load = load;
+
+                const Vec3 u = relative(row);
+                Vec3 friction = row.friction - row.tangentMass1 * u.dot(row.tangent1) * row.tangent1 -
+                                row.tangentMass2 * u.dot(row.tangent2) * row.tangent2;
+                const Real limit = patch[k].friction * row.load;
+                if (friction.norm() > limit)
+                {
+                    friction *= limit / friction.norm();
+                }
+                push(row, friction - row.friction);
+                change = std::max(change, (friction - row.friction).norm());
+                row.friction = friction;
             }
-            push(row, friction - row.friction);
-            change = std::max(change, (friction - row.friction).norm());
-            row.friction = friction;
+            if (!(change > 1e-9 * largest))
+            {
+                break;
+            }
         }
-        if (!(change > 1e-9 * largest))
+    };
+    gaussSeidel();
+    // The outcome must not add energy, and two things can make it: a nearly singular patch (a body
+    // pinched between faces of nearly opposite normals) whose least-squares start asks for huge
+    // opposing impulses that no longer cancel once projected into the cones, more than the capped
+    // iterations can take back; and restitution targets taken point by point, which at a pinch
+    // (separating along two nearly opposite normals at once) are out of reach, so the loads grow
+    // until the cap. Such a patch is solved again as inelastic and from rest: its targets
+    // (u_n >= 0) are always reachable and each normal step of that solve lowers the energy. Should
+    // even that add energy, the patch is left to the pairwise impulses.
+    if (addsEnergy())
+    {
+        reset();
+        for (Row& row : rows)
         {
-            break;
+            row.keep = 0.0;
+        }
+        gaussSeidel();
+        if (addsEnergy())
+        {
+            reset();
+            return false;
         }
     }
 

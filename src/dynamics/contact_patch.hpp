@@ -30,7 +30,9 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
 /// two supports that spread, a body tipping off one of them): projected Gauss-Seidel with
 /// accumulated impulses, each point's load kept >= 0 and its friction within mu times that load,
 /// so points may lift or slide. The partners are held as they move while the body's impulses are
-/// found, then receive the reactions. Returns true if any impulse was applied.
+/// found, then receive the reactions. The outcome never adds kinetic energy: one that would (a
+/// nearly singular patch, restitution targets out of reach at a pinch) is solved again as
+/// inelastic, or else left alone. Returns true if any impulse was applied.
 bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps,
                                 const PassSettings& settings);
 
