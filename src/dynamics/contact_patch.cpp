@@ -144,12 +144,13 @@ struct PatchLeastSquares
     Eigen::VectorXd reached;
 };
 
-PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch,
-                                         const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever,
-                                         const Eigen::VectorXd& target)
+void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
+                            const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
+                            PatchLeastSquares& result)
 {
     // the movable bodies, the patch's body first: each owns six columns of A
-    std::vector<const RigidBody*> movable;
+    thread_local std::vector<const RigidBody*> movable;
+    movable.clear();
     if (!body.immovable())
     {
         movable.push_back(&body);
@@ -198,30 +199,28 @@ PatchLeastSquares solvePatchLeastSquares(const RigidBody& body, const std::vecto
     decomposition.setThreshold(std::sqrt(static_cast<Real>(rows) * std::numeric_limits<Real>::epsilon()));
     decomposition.compute(a);
     // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse
-    const Eigen::VectorXd leastNorm = decomposition.solve(target);
-    PatchLeastSquares result;
+    thread_local Eigen::VectorXd leastNorm;
+    leastNorm = decomposition.solve(target);
     result.impulses = decomposition.transpose().solve(leastNorm);
     result.reached = a * (a.transpose() * result.impulses);
-    return result;
 }
 
 // Target normal velocity of every point of a patch from its normal approach u_n (negative).
 // Restitution eps >= 0 reflects each point's own approach (an elastic landing keeps its spin); a
 // negative eps of the contact ramp keeps |eps| of the patch's mean approach at every point, so each
 // sweep removes the tilt and slip outright and shares out only the rest.
-std::vector<Real> targetNormalVelocities(const std::vector<Real>& approach, Real eps)
+void targetNormalVelocities(const std::vector<Real>& approach, Real eps, std::vector<Real>& keep)
 {
     Real mean = 0.0;
     for (const Real un : approach)
     {
         mean += un / static_cast<Real>(approach.size());
     }
-    std::vector<Real> keep(approach.size());
+    keep.resize(approach.size());
     for (std::size_t k = 0; k < approach.size(); ++k)
     {
         keep[k] = eps >= 0.0 ? -eps * approach[k] : -eps * mean;
     }
-    return keep;
 }
 
 // Applies impulse j_k at every patch point: +j_k to the body, -j_k to its partner there.
@@ -260,10 +259,18 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         }
     }
     const auto n = static_cast<Eigen::Index>(patch.size());
-    std::vector<Vec3> lever(patch.size());
-    std::vector<Vec3> otherLever(patch.size());
-    std::vector<Vec3> velocity(patch.size());
-    std::vector<Real> approach(patch.size());
+    // kept per thread (here and in the projected solve): a patch of a size seen before allocates
+    // nothing
+    thread_local std::vector<Vec3> lever;
+    thread_local std::vector<Vec3> otherLever;
+    thread_local std::vector<Vec3> velocity;
+    thread_local std::vector<Real> approach;
+    thread_local std::vector<Real> keep;
+    thread_local std::vector<Vec3> impulses;
+    lever.resize(patch.size());
+    otherLever.resize(patch.size());
+    velocity.resize(patch.size());
+    approach.resize(patch.size());
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
         const ContactPoint& contact = patch[k].contact;
@@ -273,13 +280,15 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         velocity[k] = relativeVelocity(body, body.predicted, other, other.predicted, contact, settings);
         approach[k] = velocity[k].dot(contact.normal);
     }
-    const std::vector<Real> keep = targetNormalVelocities(approach, eps);
-    Eigen::VectorXd target(3 * n);
+    targetNormalVelocities(approach, eps, keep);
+    thread_local Eigen::VectorXd target;
+    target.resize(3 * n);
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
         target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep[k] * patch[k].contact.normal - velocity[k];
     }
-    const PatchLeastSquares leastSquares = solvePatchLeastSquares(body, patch, lever, otherLever, target);
+    thread_local PatchLeastSquares leastSquares;
+    solvePatchLeastSquares(body, patch, lever, otherLever, target, leastSquares);
     const Eigen::VectorXd& solved = leastSquares.impulses;
     // Reachable: the least-squares solution meets the targets to 1e-6 of their size, plus round-off
     // (1e-12) of the velocities involved. Exactly consistent for eps = 0; for eps != 0 a patch tilted
@@ -293,7 +302,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     {
         return false; // the targets are not reachable together
     }
-    std::vector<Vec3> impulses(patch.size());
+    impulses.resize(patch.size());
     if (!distributeOverPatch(patch, solved, impulses))
     {
         return false;
@@ -332,8 +341,8 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         Real invMass;
         Mat3 invInertia;
     };
-    std::vector<Motion> motions{
-        {&body, body.linearVelocity, body.angularVelocity, invMassOf(body), invInertiaOf(body)}};
+    thread_local std::vector<Motion> motions;
+    motions.assign(1, {&body, body.linearVelocity, body.angularVelocity, invMassOf(body), invInertiaOf(body)});
     struct Row
     {
         std::size_t partner = 0; // index into motions
@@ -351,10 +360,18 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         Vec3 friction = Vec3::Zero();
     };
     const std::size_t n = patch.size();
-    std::vector<Row> rows(n);
-    std::vector<Real> approach(n);
-    std::vector<Vec3> levers(n); // the rows' levers, as solvePatchLeastSquares and applyToPatch take them
-    std::vector<Vec3> partnerLevers(n);
+    thread_local std::vector<Row> rows;
+    thread_local std::vector<Real> approach;
+    thread_local std::vector<Real> keep;
+    thread_local std::vector<Vec3> levers; // the rows' levers, as solvePatchLeastSquares and applyToPatch take them
+    thread_local std::vector<Vec3> partnerLevers;
+    thread_local std::vector<Vec3> initial;
+    thread_local std::vector<Motion> untouched;
+    thread_local std::vector<Vec3> impulses;
+    rows.assign(n, Row{});
+    approach.resize(n);
+    levers.resize(n);
+    partnerLevers.resize(n);
     for (std::size_t k = 0; k < n; ++k)
     {
         const ContactPoint& contact = patch[k].contact;
@@ -387,7 +404,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         row.tangentMass1 = 1.0 / row.tangent1.dot(K * row.tangent1);
         row.tangentMass2 = 1.0 / row.tangent2.dot(K * row.tangent2);
     }
-    const std::vector<Real> keep = targetNormalVelocities(approach, eps);
+    targetNormalVelocities(approach, eps, keep);
     for (std::size_t k = 0; k < n; ++k)
     {
         rows[k].keep = keep[k];
@@ -412,7 +429,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     // kinetic energy the rows' impulses add is sum_k j_k . (u_k + u_k') / 2, u_k' the velocities now
     // (exact, the velocities being linear in the impulses), to be compared with the round-off of
     // its terms, sum_k |j_k| (|u_k| + |u_k'|) / 2.
-    std::vector<Vec3> initial(n);
+    initial.resize(n);
     for (std::size_t k = 0; k < n; ++k)
     {
         initial[k] = relative(rows[k]) - rows[k].correction * rows[k].normal;
@@ -430,7 +447,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         }
         return work > 1e-9 * scale;
     };
-    const std::vector<Motion> untouched = motions;
+    untouched = motions;
     const auto reset = [&]
     {
         motions = untouched;
@@ -444,12 +461,15 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     // Warm start: the least-squares impulses of the coupled system (as in applyPatchImpulse), each
     // projected into its cone; Gauss-Seidel alone converges slowly on so redundant a set of points.
     {
-        Eigen::VectorXd target(static_cast<Eigen::Index>(3 * n));
+        thread_local Eigen::VectorXd target;
+        target.resize(static_cast<Eigen::Index>(3 * n));
         for (std::size_t i = 0; i < n; ++i)
         {
             target.segment<3>(3 * static_cast<Eigen::Index>(i)) = rows[i].keep * rows[i].normal - relative(rows[i]);
         }
-        const Eigen::VectorXd start = solvePatchLeastSquares(body, patch, levers, partnerLevers, target).impulses;
+        thread_local PatchLeastSquares leastSquares;
+        solvePatchLeastSquares(body, patch, levers, partnerLevers, target, leastSquares);
+        const Eigen::VectorXd& start = leastSquares.impulses;
         if (start.allFinite())
         {
             for (std::size_t k = 0; k < n; ++k)
@@ -524,7 +544,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         }
     }
 
-    std::vector<Vec3> impulses(n);
+    impulses.resize(n);
     bool applied = false;
     for (std::size_t k = 0; k < n; ++k)
     {

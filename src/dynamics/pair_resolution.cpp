@@ -220,8 +220,10 @@ void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
     {
         deepest = patch[k].contact.phi < patch[deepest].contact.phi ? k : deepest;
     }
-    std::vector<PatchPoint> kept{patch[deepest]};
-    std::vector<Real> gap(patch.size());
+    thread_local std::vector<PatchPoint> kept;
+    thread_local std::vector<Real> gap;
+    kept.assign(1, patch[deepest]);
+    gap.resize(patch.size());
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
         gap[k] = (patch[k].contact.point - patch[deepest].contact.point).squaredNorm();
@@ -239,7 +241,7 @@ void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
             gap[k] = std::min(gap[k], (patch[k].contact.point - patch[farthest].contact.point).squaredNorm());
         }
     }
-    patch = std::move(kept);
+    patch.swap(kept); // kept keeps the storage for the next call
 }
 
 // Appends the touching points of `body` against `other` that approach, as patch points.
@@ -331,7 +333,7 @@ void predictBody(RigidBody& body, const PassSettings& settings)
 int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
                 std::vector<ContactPoint>& scratch)
 {
-    std::vector<PatchPoint> patch;
+    thread_local std::vector<PatchPoint> patch; // kept per thread: allocates only when a patch is larger than before
     int applied = 0;
     for (int iteration = 0; iteration < settings.pairIterations; ++iteration)
     {
@@ -393,7 +395,8 @@ int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real e
 {
     if (supports.size() > 1)
     {
-        std::vector<PatchPoint> patch;
+        thread_local std::vector<PatchPoint> patch;
+        patch.clear();
         for (const Support& support : supports)
         {
             scratch.clear();
