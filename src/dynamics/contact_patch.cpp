@@ -429,10 +429,11 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     // kinetic energy the rows' impulses add is sum_k j_k . (u_k + u_k') / 2, u_k' the velocities now
     // (exact, the velocities being linear in the impulses), to be compared with the round-off of
     // its terms, sum_k |j_k| (|u_k| + |u_k'|) / 2.
+    const auto rawRelative = [&](const Row& row) { return Vec3(relative(row) - row.correction * row.normal); };
     initial.resize(n);
     for (std::size_t k = 0; k < n; ++k)
     {
-        initial[k] = relative(rows[k]) - rows[k].correction * rows[k].normal;
+        initial[k] = rawRelative(rows[k]);
     }
     const auto addsEnergy = [&]
     {
@@ -441,7 +442,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         for (std::size_t k = 0; k < n; ++k)
         {
             const Vec3 j = rows[k].load * rows[k].normal + rows[k].friction;
-            const Vec3 now = relative(rows[k]) - rows[k].correction * rows[k].normal;
+            const Vec3 now = rawRelative(rows[k]);
             work += 0.5 * j.dot(initial[k] + now);
             scale += 0.5 * j.norm() * (initial[k].norm() + now.norm());
         }

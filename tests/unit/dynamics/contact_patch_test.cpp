@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The patch solves of contact_patch.hpp against the conservation law they must keep: an inelastic
-// patch impulse (eps = 0) never adds kinetic energy, however badly conditioned the patch. The
-// random patches below are built to be nearly singular (points bunched together, normals nearly
-// parallel, partners shared between points), the case in which a least-squares warm start can ask
-// for impulses far larger than the contact needs.
+// The patch solves of contact_patch.hpp against the conservation law they must keep: a patch
+// impulse with restitution between 0 and 1 never adds kinetic energy, however badly conditioned the
+// patch. The random patches below are built to be nearly singular (points bunched together, normals
+// from nearly parallel to pointing every way, partners shared between points), the case in which a
+// least-squares warm start can ask for impulses far larger than the contact needs, and in which
+// restitution targets at a pinch are out of reach.
 #include "dynamics/contact_patch.hpp"
 
 #include <gtest/gtest.h>
@@ -57,9 +58,9 @@ Real kineticEnergy(const RigidBody& body)
     return 0.5 * body.mass * body.linearVelocity.squaredNorm() + 0.5 * body.angularMomentum.dot(body.angularVelocity);
 }
 
-// The body sits above its partners; each point lies between it and a partner, its normal (from the
-// partner toward the body) tilted at most `spread` radians off the vertical, its position within
-// `cluster` of a common spot, so that small spreads give nearly parallel rows.
+// The body sits above its partners; each point lies within `cluster` of a common spot, its normal
+// (from the partner toward the body) the vertical plus `spread` times a random vector: small spreads
+// give nearly parallel rows, large ones normals in every direction, a body pinched between faces.
 struct RandomPatch
 {
     std::deque<RigidBody> bodies; // bodies[0] is the body; a deque keeps the partners' addresses
