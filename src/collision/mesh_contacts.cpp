@@ -649,6 +649,56 @@ class MeshPairMemo
 
 } // namespace
 
+namespace
+{
+
+// The least of phi over the vertices of `points` (at `pose`) against `target`, or `least` if none is
+// lower. Each phi that is computed is what verticesAgainst computes with an infinite threshold; a
+// vertex is passed over when a lower bound of that phi (its distance to the target's box, or the
+// grid less its error) is above the least so far by more than round-off, so the result is the same.
+Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeometry& target, const Pose& targetPose,
+                     Real least)
+{
+    const Mat3 rotation = targetPose.rotation.transpose() * pose.rotation;
+    const Vec3 shift = targetPose.rotation.transpose() * (pose.position - targetPose.position);
+    // round-off of the transforms and of the bounds, far above a few units in the last place
+    const Real slack = 1e-9 * (shift.norm() + points.boundingRadius() + target.boundingRadius() + target.cellSize());
+    // |rotation x| <= stretch |x|: a rotation up to round-off, bounded all the same
+    const Real stretch = std::sqrt(1.0 + (rotation.transpose() * rotation - Mat3::Identity()).norm()) * (1.0 + 1e-9);
+    const std::vector<Vec3>& vertices = points.vertices();
+    const std::vector<std::uint32_t>& members = points.vertexClusterMembers();
+    // phi is at least the distance to the target's box, where that is positive: outside the box
+    const auto aboveLeast = [&](Real outside) { return outside > 0.0 && outside > least + slack; };
+    for (const MeshGeometry::VertexCluster& cluster : points.vertexClusters())
+    {
+        const Vec3 centre = rotation * cluster.centre + shift;
+        if (aboveLeast(std::sqrt(squaredDistanceToBox(centre, target.lower(), target.upper())) -
+                       stretch * cluster.radius))
+        {
+            continue;
+        }
+        for (std::uint32_t i = cluster.first; i < cluster.first + cluster.count; ++i)
+        {
+            const Vec3 local = rotation * vertices[members[i]] + shift;
+            if (aboveLeast(std::sqrt(squaredDistanceToBox(local, target.lower(), target.upper()))) ||
+                target.gridDistance(local).phi - target.gridError() > least + slack)
+            {
+                continue;
+            }
+            least = std::min(least, target.distance(local, kInfinity).phi);
+        }
+    }
+    return least;
+}
+
+} // namespace
+
+Real leastMeshMeshDistance(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB)
+{
+    const Real least = leastOfVertices(*a.geometry, poseA, *b.geometry, poseB, kInfinity);
+    return leastOfVertices(*b.geometry, poseB, *a.geometry, poseA, least);
+}
+
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                      std::vector<ContactPoint>& out)
 {

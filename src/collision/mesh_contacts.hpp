@@ -23,4 +23,9 @@ void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, cons
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
                      std::vector<ContactPoint>& out);
 
+/// The least phi of the points collideMeshMesh gives with an infinite threshold (every vertex of
+/// each mesh against the other), to the bit, without the distance queries of the vertices whose
+/// bounds show they cannot be the least.
+Real leastMeshMeshDistance(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB);
+
 } // namespace impulse

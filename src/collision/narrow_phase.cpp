@@ -197,4 +197,23 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
     // plane-plane: two static half-spaces never need contact
 }
 
+Real leastSignedDistance(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB,
+                         std::vector<ContactPoint>& scratch)
+{
+    const auto* ma = std::get_if<Mesh>(&a);
+    const auto* mb = std::get_if<Mesh>(&b);
+    if (ma != nullptr && mb != nullptr)
+    {
+        return leastMeshMeshDistance(*ma, poseA, *mb, poseB);
+    }
+    scratch.clear();
+    collideShapes(a, poseA, b, poseB, std::numeric_limits<Real>::infinity(), scratch);
+    Real least = std::numeric_limits<Real>::infinity();
+    for (const ContactPoint& point : scratch)
+    {
+        least = std::min(least, point.phi);
+    }
+    return least;
+}
+
 } // namespace impulse

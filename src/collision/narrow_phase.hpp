@@ -16,4 +16,10 @@ namespace impulse
 void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
                    std::vector<ContactPoint>& out);
 
+/// The least signed distance of the pair: the least phi of the points collideShapes gives with an
+/// infinite threshold, +infinity if it gives none. Two meshes skip the vertices that cannot be the
+/// least; other pairs collide into `scratch`.
+Real leastSignedDistance(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB,
+                         std::vector<ContactPoint>& scratch);
+
 } // namespace impulse

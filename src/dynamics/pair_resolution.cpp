@@ -88,16 +88,6 @@ const ContactPoint* deepestApproaching(const RigidBody& a, const Pose& poseA, co
     return deepest;
 }
 
-Real leastDistance(const std::vector<ContactPoint>& points)
-{
-    Real least = kInfinity;
-    for (const ContactPoint& point : points)
-    {
-        least = std::min(least, point.phi);
-    }
-    return least;
-}
-
 // Moves `contact`, `poseA` and `poseB` back to the first touch of the pair within the step, when the
 // pair was apart at time n and overlaps at the predicted pose.
 void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings& settings,
@@ -107,19 +97,21 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     {
         pa = poseAtFraction(a, settings, fraction);
         pb = poseAtFraction(b, settings, fraction);
-        scratch.clear();
-        collideShapes(a.shape, pa, b.shape, pb, kInfinity, scratch);
-        return leastDistance(scratch);
+        return leastSignedDistance(a.shape, pa, b.shape, pb, scratch);
     };
     Pose pa;
     Pose pb;
     Real lo = 0.0;
     Real flo = distanceAt(lo, pa, pb);
+    if (!(flo > 0.0))
+    {
+        return; // already touching at time n: resting contact, the common case in a pile
+    }
     Real hi = 1.0;
     Real fhi = distanceAt(hi, pa, pb);
-    if (!(flo > 0.0) || !(fhi <= 0.0))
+    if (!(fhi <= 0.0))
     {
-        return; // already touching at time n (resting contact), or nothing to bracket
+        return; // nothing to bracket
     }
     // Illinois variant of regula falsi: keeps a bracket and converges superlinearly
     int lastSide = 0;
@@ -146,7 +138,11 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
             }
         }
     }
-    distanceAt(hi, pa, pb);
+    // the points at the first touch, to find the one to respond at
+    pa = poseAtFraction(a, settings, hi);
+    pb = poseAtFraction(b, settings, hi);
+    scratch.clear();
+    collideShapes(a.shape, pa, b.shape, pb, kInfinity, scratch);
     if (const ContactPoint* touch = deepestApproaching(a, pa, b, pb, kInfinity, scratch, settings))
     {
         contact = *touch;
@@ -327,11 +323,12 @@ void predictBody(RigidBody& body, const PassSettings& settings)
     if (body.dynamic)
     {
         body.predicted = poseAtFraction(body, settings, 1.0);
+        ++body.motion;
     }
 }
 
-int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
-                std::vector<ContactPoint>& scratch)
+Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
+                       std::vector<ContactPoint>& scratch)
 {
     thread_local std::vector<PatchPoint> patch; // kept per thread: allocates only when a patch is larger than before
     int applied = 0;
@@ -343,7 +340,7 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
         collectApproaching(a, b, mu, settings, scratch, patch);
         if (patch.empty())
         {
-            break;
+            return {applied, applied == 0};
         }
         reducePatch(a, patch);
         const Real patchEps = patchRestitution(a, eps, patch, settings);
@@ -387,11 +384,11 @@ int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSetting
             break;
         }
     }
-    return applied;
+    return {applied, false};
 }
 
-int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
-                      std::vector<ContactPoint>& scratch)
+Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
+                             std::vector<ContactPoint>& scratch)
 {
     if (supports.size() > 1)
     {
@@ -413,15 +410,17 @@ int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real e
             {
                 predictBody(*support.body, settings);
             }
-            return 1;
+            return {1, false};
         }
     }
-    int applied = 0;
+    Resolution all{0, true};
     for (const Support& support : supports)
     {
-        applied += resolvePair(body, *support.body, eps, support.friction, settings, scratch);
+        const Resolution one = resolvePair(body, *support.body, eps, support.friction, settings, scratch);
+        all.impulses += one.impulses;
+        all.quiet = all.quiet && one.quiet;
     }
-    return applied;
+    return all;
 }
 
 } // namespace impulse

@@ -41,15 +41,25 @@ Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, co
 /// Pose of the body at the end of the step under the velocities this pass uses.
 Pose predictedPose(const RigidBody& body, const PassSettings& settings);
 
-/// Places body.predicted at predictedPose. Static bodies keep theirs (their pose, set when they are
-/// created), so that passes on different threads never write to a body they share.
+/// Places body.predicted at predictedPose and counts the move in body.motion. Static bodies keep
+/// theirs (their pose, set when they are created), so that passes on different threads never write
+/// to a body they share.
 void predictBody(RigidBody& body, const PassSettings& settings);
+
+/// What resolving a pair, or a body on its supports, did.
+struct Resolution
+{
+    int impulses = 0;
+    /// Nothing was approaching at the predicted poses: while no body involved is predicted anew
+    /// (RigidBody::motion unchanged), resolving again would find nothing again.
+    bool quiet = false;
+};
 
 /// GBF03 sec. 4: up to settings.pairIterations times, find the deepest approaching sample point of
 /// the pair at the predicted poses, apply one impulse (restitution eps, friction mu) and re-predict
-/// both bodies. Returns the number of impulses applied.
-int resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
-                std::vector<ContactPoint>& scratch);
+/// both bodies.
+Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
+                       std::vector<ContactPoint>& scratch);
 
 /// A body another rests on, with the friction of that pair.
 struct Support
@@ -61,8 +71,8 @@ struct Support
 /// Resolves a body against everything it rests on (the contact pass, and shock propagation where
 /// the supports are frozen): its approaching points on all supports are first resolved as one patch
 /// with restitution eps, so a lintel on two stacks or a block on two blocks is held by both at once;
-/// if that patch does not stick, each support is resolved as a pair. Returns the impulses applied.
-int resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
-                      std::vector<ContactPoint>& scratch);
+/// if that patch does not stick, each support is resolved as a pair.
+Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
+                             std::vector<ContactPoint>& scratch);
 
 } // namespace impulse

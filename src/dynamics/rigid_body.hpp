@@ -12,6 +12,8 @@
 #include <impulse/math.hpp>
 #include <impulse/shape.hpp>
 
+#include <cstdint>
+
 namespace impulse
 {
 
@@ -39,9 +41,10 @@ struct RigidBody
     Vec3 angularVelocity = Vec3::Zero(); ///< invInertiaWorld * angularMomentum
 
     // per-step scratch
-    Pose predicted;      ///< pose at the end of the step under the velocities of the current pass
-    int level = -1;      ///< contact-graph level this step; -1 for static bodies
-    bool frozen = false; ///< treated as infinite mass during shock propagation
+    Pose predicted;           ///< pose at the end of the step under the velocities of the current pass
+    std::uint32_t motion = 0; ///< how many times `predicted` was placed (predictBody): a change stamp
+    int level = -1;           ///< contact-graph level this step; -1 for static bodies
+    bool frozen = false;      ///< treated as infinite mass during shock propagation
 
     /// Static, or frozen by shock propagation: impulses do not move it.
     bool immovable() const { return !dynamic || frozen; }

@@ -261,6 +261,7 @@ void WorldImpl::buildIslands()
 void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& settings)
 {
     predictAll(settings);
+    beginSweepingPass();
     std::vector<int> applied(islands.size(), 0);
     std::vector<int> sweeps(islands.size(), 0);
     parallelFor(threads, islands.size(),
@@ -286,13 +287,28 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
     }
 }
 
+void WorldImpl::beginSweepingPass()
+{
+    // stamps of earlier passes (and of pairs that had other indices in earlier steps) never hold
+    ++pass;
+    quietPairs.resize(pairs.size());
+}
+
 int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const PassSettings& settings)
 {
     int applied = 0;
     for (const std::uint32_t k : island.pairs)
     {
-        applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], pairCoefficients[k].restitution,
-                               pairCoefficients[k].friction, settings, local.points);
+        RigidBody& a = bodies[pairs[k].a];
+        RigidBody& b = bodies[pairs[k].b];
+        if (quietPairs[k].holds(pass, a, b))
+        {
+            continue;
+        }
+        const Resolution done =
+            resolvePair(a, b, pairCoefficients[k].restitution, pairCoefficients[k].friction, settings, local.points);
+        applied += done.impulses;
+        quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
     }
     return applied;
 }
@@ -437,6 +453,7 @@ void WorldImpl::updateVelocities(const StepOptions& options)
 void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& settings)
 {
     predictAll(settings);
+    beginSweepingPass();
     std::vector<int> applied(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
@@ -466,6 +483,7 @@ void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
     // (infinite mass) while a level is processed: corrections only travel upward, and a box can no
     // longer push its supports into the ground.
     predictAll(settings);
+    beginSweepingPass();
     std::vector<int> applied(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
@@ -550,9 +568,11 @@ void WorldImpl::planLevels(Island& island, ThreadScratch& local)
         first = last;
     }
     island.supportStart.push_back(static_cast<std::uint32_t>(island.supports.size()));
+    island.quietBodies.assign(island.levelBodies.size(), QuietStamp{});
+    island.quietSupports.assign(island.supports.size(), 0);
 }
 
-int WorldImpl::sweepLevels(const Island& island, ThreadScratch& local, Real eps, bool freezeLowerLevels,
+int WorldImpl::sweepLevels(Island& island, ThreadScratch& local, Real eps, bool freezeLowerLevels,
                            const PassSettings& settings)
 {
     int applied = 0;
@@ -567,14 +587,44 @@ int WorldImpl::sweepLevels(const Island& island, ThreadScratch& local, Real eps,
         }
         for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
         {
-            applied +=
-                resolveOnSupports(bodies[island.levelBodies[n]], island.supportsOf(n), eps, settings, local.points);
+            RigidBody& body = bodies[island.levelBodies[n]];
+            const std::span<const Support> supports = island.supportsOf(n);
+            const std::uint32_t first = island.supportStart[n];
+            const auto supportsStill = [&]
+            {
+                for (std::size_t s = 0; s < supports.size(); ++s)
+                {
+                    if (supports[s].body->motion != island.quietSupports[first + s])
+                    {
+                        return false;
+                    }
+                }
+                return true;
+            };
+            if (island.quietBodies[n].holds(pass, body, body) && supportsStill())
+            {
+                continue;
+            }
+            const Resolution done = resolveOnSupports(body, supports, eps, settings, local.points);
+            applied += done.impulses;
+            island.quietBodies[n] = done.quiet ? QuietStamp{pass, body.motion, body.motion} : QuietStamp{};
+            for (std::size_t s = 0; done.quiet && s < supports.size(); ++s)
+            {
+                island.quietSupports[first + s] = supports[s].body->motion;
+            }
         }
         for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
         {
             const std::uint32_t k = island.twoWayPairs[n];
-            applied += resolvePair(bodies[pairs[k].a], bodies[pairs[k].b], eps, pairCoefficients[k].friction, settings,
-                                   local.points);
+            RigidBody& a = bodies[pairs[k].a];
+            RigidBody& b = bodies[pairs[k].b];
+            if (quietPairs[k].holds(pass, a, b))
+            {
+                continue;
+            }
+            const Resolution done = resolvePair(a, b, eps, pairCoefficients[k].friction, settings, local.points);
+            applied += done.impulses;
+            quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
         }
     }
     return applied;

@@ -19,6 +19,22 @@
 namespace impulse
 {
 
+/// When resolving a pair, or a body on its supports, last found nothing approaching: the pass and
+/// the motion stamps (RigidBody::motion) of the bodies then. While the pass is the same and no
+/// body's stamp has moved, every prediction it read is the same, so resolving again would find
+/// nothing again and can be skipped: a sweep revisits only what an impulse has touched since.
+struct QuietStamp
+{
+    std::uint64_t pass = 0; ///< WorldImpl::pass when taken; 0: never
+    std::uint32_t motion = 0;
+    std::uint32_t otherMotion = 0; ///< a pair's second body; unused for a body on its supports
+
+    bool holds(std::uint64_t currentPass, const RigidBody& a, const RigidBody& b) const
+    {
+        return pass == currentPass && motion == a.motion && otherMotion == b.motion;
+    }
+};
+
 /// Dynamic bodies connected through candidate pairs, with those pairs. Impulses never cross from one
 /// island to another, so islands are solved independently, each to its own convergence, and in
 /// parallel.
@@ -35,11 +51,13 @@ struct Island
         std::uint32_t firstFrozen = 0, endFrozen = 0; ///< range of frozen
     };
     std::vector<Level> levels;
-    std::vector<std::uint32_t> levelBodies;  ///< bodies of each level that rest on something, ascending
-    std::vector<std::uint32_t> supportStart; ///< per levelBodies entry: its range of supports
-    std::vector<Support> supports;           ///< in pair order
-    std::vector<std::uint32_t> twoWayPairs;  ///< pairs of two bodies of the same level, in pair order
-    std::vector<std::uint32_t> frozen;       ///< per level: the lower-level bodies shock propagation freezes
+    std::vector<std::uint32_t> levelBodies;   ///< bodies of each level that rest on something, ascending
+    std::vector<std::uint32_t> supportStart;  ///< per levelBodies entry: its range of supports
+    std::vector<Support> supports;            ///< in pair order
+    std::vector<std::uint32_t> twoWayPairs;   ///< pairs of two bodies of the same level, in pair order
+    std::vector<std::uint32_t> frozen;        ///< per level: the lower-level bodies shock propagation freezes
+    std::vector<QuietStamp> quietBodies;      ///< per levelBodies entry: the body's stamp when last quiet
+    std::vector<std::uint32_t> quietSupports; ///< per supports entry: its motion stamp then
 
     /// What levelBodies[n] rests on.
     std::span<const Support> supportsOf(std::uint32_t n) const
@@ -77,6 +95,8 @@ class WorldImpl
     std::vector<Pose> probePoses;          ///< per body: predicted with the new velocity v + dt a
     std::vector<Vec3> pushOrigins;         ///< per body: its position before push-out
     std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
+    std::vector<QuietStamp> quietPairs;    ///< parallel to pairs
+    std::uint64_t pass = 0;                ///< counts the sweeping passes, so that no stamp outlives its own
     std::vector<ThreadScratch> scratch;    ///< one per worker thread
     int threads = 1;                       ///< worker threads of this step
 
@@ -103,8 +123,9 @@ class WorldImpl
     void predictAll(const PassSettings& settings);
     int sweepPairs(const Island& island, ThreadScratch& scratch, const PassSettings& settings);
     void planLevels(Island& island, ThreadScratch& scratch);
-    int sweepLevels(const Island& island, ThreadScratch& scratch, Real eps, bool freezeLowerLevels,
+    int sweepLevels(Island& island, ThreadScratch& scratch, Real eps, bool freezeLowerLevels,
                     const PassSettings& settings);
+    void beginSweepingPass();
 };
 
 } // namespace impulse
