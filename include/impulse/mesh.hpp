@@ -93,6 +93,8 @@ class MeshGeometry
     /// Signed distance from the grid: trilinear interpolation and its gradient inside the grid;
     /// outside, the distance to the grid box added to the value at the nearest grid point.
     MeshDistance gridDistance(const Vec3& pointBody) const;
+    /// gridDistance(pointBody).phi without the gradient.
+    Real gridPhi(const Vec3& pointBody) const;
     /// Exact signed distance to the triangles: closest point from the hierarchy, sign from the
     /// angle-weighted pseudonormal of the nearest feature. Costs a tree search.
     MeshDistance exactDistance(const Vec3& pointBody) const;

@@ -39,6 +39,11 @@ struct Target
     /// The same, where distance(local, ...) returned a value that is not exact: that value.
     virtual Real lowerBound(const Vec3& local, Real needed, Real coarse) const = 0;
     virtual void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const = 0;
+    /// A value of phi that is cheap to know, at most gridError() above phi; lowerBound(local, needed,
+    /// coarse) takes it as `coarse`.
+    virtual Real coarse(const Vec3& local) const = 0;
+    /// How far above phi a value distance() returns as not exact, or coarse(), may lie.
+    virtual Real gridError() const { return 0.0; }
 
     Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
 };
@@ -57,6 +62,8 @@ struct MeshTarget final : Target
     {
         mesh.segmentCrossings(a, b, enterLeave);
     }
+    Real coarse(const Vec3& local) const override { return mesh.gridPhi(local); }
+    Real gridError() const override { return mesh.gridError(); }
 };
 
 // A solid with an analytic signed distance: exact everywhere, so phi is its own lower bound.
@@ -70,6 +77,7 @@ struct AnalyticTarget : Target
         return {sample.phi, sample.gradient, true};
     }
     Real lowerBound(const Vec3& local, Real) const final { return analytic(local).phi; }
+    Real coarse(const Vec3& local) const final { return analytic(local).phi; }
     Real lowerBound(const Vec3& local, Real, Real) const final { return analytic(local).phi; }
 };
 
@@ -179,18 +187,35 @@ struct VertexBounds
     enum class State : std::uint8_t
     {
         Exact,
-        Unvisited,      ///< verticesAgainst has yet to look at it
-        Far,            ///< exact bound: its distance to the target's box, which is above `value`
-        AboveOutside,   ///< exact bound max(outside, lowerBound); value = outside
-        AboveThreshold, ///< exact bound max(lowerBound, threshold); value = threshold
+        Unvisited,          ///< verticesAgainst has yet to look at it
+        Far,                ///< exact bound: its distance to the target's box, which is above `value`
+        AboveOutside,       ///< exact bound max(outside, lowerBound); value = outside
+        AboveOutsideCoarse, ///< the same; outside in `floor`, value = max(outside, coarse - its error)
+        AboveThreshold,     ///< exact bound max(lowerBound, threshold); value = max(grid - its error, threshold)
     };
     std::vector<Real> value;
     std::vector<State> state;
     std::vector<Vec3> local; ///< the vertex in the target's frame, where a deferred bound needs it
-    std::vector<Real> grid;  ///< AboveThreshold: the grid's phi at `local`
+    std::vector<Real> grid;  ///< AboveThreshold, AboveOutsideCoarse: the target's coarse phi at `local`
+    std::vector<Real> floor; ///< AboveOutsideCoarse: the distance to the target's box
     Real edgeReach = 0.0;
+    Real threshold = 0.0;
     Mat3 rotation = Mat3::Identity(); ///< body frame of the vertices -> target frame
     Vec3 shift = Vec3::Zero();
+
+    // A bound between the cheap one and the exact one: for a vertex outside the target's box, the
+    // target's coarse phi less its error as well. The exact bound is never below it.
+    Real better(std::size_t v, const Target& target)
+    {
+        if (state[v] == State::AboveOutside)
+        {
+            floor[v] = value[v];
+            grid[v] = target.coarse(local[v]);
+            value[v] = std::max(value[v], grid[v] - target.gridError());
+            state[v] = State::AboveOutsideCoarse;
+        }
+        return value[v];
+    }
 
     // The exact bound of vertex v, computed once when deferred.
     Real exact(const std::vector<Vec3>& vertices, std::size_t v, const Target& target)
@@ -204,8 +229,11 @@ struct VertexBounds
         case State::AboveOutside:
             value[v] = std::max(value[v], target.lowerBound(local[v], edgeReach));
             break;
+        case State::AboveOutsideCoarse:
+            value[v] = std::max(floor[v], target.lowerBound(local[v], edgeReach, grid[v]));
+            break;
         case State::AboveThreshold:
-            value[v] = std::max(target.lowerBound(local[v], edgeReach, grid[v]), value[v]);
+            value[v] = std::max(target.lowerBound(local[v], edgeReach, grid[v]), threshold);
             break;
         default:
             break;
@@ -265,7 +293,9 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
     bounds.state.resize(vertices.size());
     bounds.local.resize(vertices.size());
     bounds.grid.resize(vertices.size());
+    bounds.floor.resize(vertices.size());
     bounds.edgeReach = edgeReach;
+    bounds.threshold = threshold;
     // body frame of the vertices -> target frame in one affine map
     bounds.rotation = target.pose.rotation.transpose() * pose.rotation;
     bounds.shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
@@ -317,8 +347,9 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
         }
         else
         {
-            // max(lowerBound, threshold) when needed; d.phi is the grid's value there
-            bounds.value[v] = threshold;
+            // max(lowerBound, threshold) when needed; d.phi is the grid's value there, and the exact
+            // bound is never below it less the grid's error (MeshGeometry::distanceLowerBound)
+            bounds.value[v] = std::max(threshold, d.phi - target.gridError());
             bounds.grid[v] = d.phi;
             bounds.local[v] = local;
             bounds.state[v] = State::AboveThreshold;
@@ -349,8 +380,14 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
         }
         if (bounds.state[edge[0]] != VertexBounds::State::Exact || bounds.state[edge[1]] != VertexBounds::State::Exact)
         {
-            // the cheap bounds are below the exact ones, and the sum and square round monotonically:
-            // an edge they cover is covered by the exact bounds too, so only now are those needed
+            // the cheap bounds are below the better ones, and those below the exact ones; the sum and
+            // square round monotonically: an edge a lower pair covers is covered by the exact bounds
+            // too, so each is computed only when the one below does not cover the edge
+            reach = bounds.better(edge[0], target) + bounds.better(edge[1], target);
+            if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
+            {
+                continue;
+            }
             reach = bounds.exact(vertices, edge[0], target) + bounds.exact(vertices, edge[1], target);
             if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
             {

@@ -381,6 +381,11 @@ MeshDistance MeshGeometry::gridDistance(const Vec3& pointBody) const
     return m_grid->sample(pointBody);
 }
 
+Real MeshGeometry::gridPhi(const Vec3& pointBody) const
+{
+    return m_grid->samplePhi(pointBody);
+}
+
 MeshDistance MeshGeometry::exactDistance(const Vec3& pointBody) const
 {
     return distanceFrom(pointBody, m_bvh->closestPoint(pointBody, std::numeric_limits<Real>::infinity()));
