@@ -93,20 +93,16 @@ class MeshGeometry
     /// Signed distance from the grid: trilinear interpolation and its gradient inside the grid;
     /// outside, the distance to the grid box added to the value at the nearest grid point.
     MeshDistance gridDistance(const Vec3& pointBody) const;
-    /// gridDistance(pointBody).phi without the gradient.
-    Real gridPhi(const Vec3& pointBody) const;
+    /// A lower bound of the exact phi from the grid alone (no tree search): the grid's value less
+    /// its error within the grid; outside it, where the grid's extension may exceed phi, the
+    /// distance to the mesh's bounding box.
+    Real coarseLowerBound(const Vec3& pointBody) const;
     /// Exact signed distance to the triangles: closest point from the hierarchy, sign from the
     /// angle-weighted pseudonormal of the nearest feature. Costs a tree search.
     MeshDistance exactDistance(const Vec3& pointBody) const;
     /// Signed distance for contact: exact where phi may be below `threshold` (within the grid's
     /// error of it) and near the surface, the grid elsewhere.
     MeshDistance distance(const Vec3& pointBody, Real threshold = std::numeric_limits<Real>::infinity()) const;
-    /// A lower bound of phi at a point, equal to phi wherever phi < `needed`: the grid where it
-    /// is far enough above, the triangles otherwise. Cheaper than distance(): no normal.
-    Real distanceLowerBound(const Vec3& pointBody, Real needed) const;
-    /// The same where the caller has the grid's value at the point already: gridPhi must be
-    /// gridDistance(pointBody).phi (as distance() returns it when not exact).
-    Real distanceLowerBound(const Vec3& pointBody, Real needed, Real gridPhi) const;
     /// Length of the longest feature edge.
     Real longestFeatureEdge() const { return m_longestFeatureEdge; }
 

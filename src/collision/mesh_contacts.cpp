@@ -34,15 +34,10 @@ struct Target
 
     virtual ~Target() = default;
     virtual MeshDistance distance(const Vec3& local, Real threshold) const = 0;
-    /// A lower bound of phi, exact where phi < needed.
-    virtual Real lowerBound(const Vec3& local, Real needed) const = 0;
-    /// The same, where distance(local, ...) returned a value that is not exact: that value.
-    virtual Real lowerBound(const Vec3& local, Real needed, Real coarse) const = 0;
     virtual void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const = 0;
-    /// A value of phi that is cheap to know, at most gridError() above phi; lowerBound(local, needed,
-    /// coarse) takes it as `coarse`.
-    virtual Real coarse(const Vec3& local) const = 0;
-    /// How far above phi a value distance() returns as not exact, or coarse(), may lie.
+    /// A lower bound of phi that is cheap to know.
+    virtual Real coarseLowerBound(const Vec3& local) const = 0;
+    /// How far above phi a value distance() returns as not exact may lie.
     virtual Real gridError() const { return 0.0; }
 
     Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
@@ -53,16 +48,11 @@ struct MeshTarget final : Target
     const MeshGeometry& mesh;
     MeshTarget(const MeshGeometry& m, const Pose& p) : Target(p, m.lower(), m.upper()), mesh(m) {}
     MeshDistance distance(const Vec3& local, Real threshold) const override { return mesh.distance(local, threshold); }
-    Real lowerBound(const Vec3& local, Real needed) const override { return mesh.distanceLowerBound(local, needed); }
-    Real lowerBound(const Vec3& local, Real needed, Real coarse) const override
-    {
-        return mesh.distanceLowerBound(local, needed, coarse);
-    }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
         mesh.segmentCrossings(a, b, enterLeave);
     }
-    Real coarse(const Vec3& local) const override { return mesh.gridPhi(local); }
+    Real coarseLowerBound(const Vec3& local) const override { return mesh.coarseLowerBound(local); }
     Real gridError() const override { return mesh.gridError(); }
 };
 
@@ -76,9 +66,7 @@ struct AnalyticTarget : Target
         const DistanceSample sample = analytic(local);
         return {sample.phi, sample.gradient, true};
     }
-    Real lowerBound(const Vec3& local, Real) const final { return analytic(local).phi; }
-    Real coarse(const Vec3& local) const final { return analytic(local).phi; }
-    Real lowerBound(const Vec3& local, Real, Real) const final { return analytic(local).phi; }
+    Real coarseLowerBound(const Vec3& local) const final { return analytic(local).phi; }
 };
 
 struct BoxTarget final : AnalyticTarget
@@ -178,67 +166,41 @@ void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance
 }
 
 // What the edge test knows of each vertex's phi against the target, gathered by verticesAgainst for
-// edgesThrough: `value` is a lower bound of phi, -infinity for a sample point. Where the exact bound
-// costs something (a distance query, or, for a vertex in a cluster far from the target, even the
-// distance to the target's box) it is deferred, and `value` holds a cheaper bound that is never
-// above it: most edges are settled by the cheap bounds or by a sample point at one end.
+// edgesThrough: `value` is a lower bound of phi, -infinity for a sample point. A bound that costs
+// something (for a vertex outside the target's box, the target's coarse lower bound; for a vertex in a
+// cluster far from the target, even its distance to the box) waits until an edge needs it. An edge
+// the bounds do not cover is tested for crossings; one they could have covered has none, so weaker
+// bounds cost crossing tests, never points.
 struct VertexBounds
 {
     enum class State : std::uint8_t
     {
-        Exact,
-        Unvisited,          ///< verticesAgainst has yet to look at it
-        Far,                ///< exact bound: its distance to the target's box, which is above `value`
-        AboveOutside,       ///< exact bound max(outside, lowerBound); value = outside
-        AboveOutsideCoarse, ///< the same; outside in `floor`, value = max(outside, coarse - its error)
-        AboveThreshold,     ///< exact bound max(lowerBound, threshold); value = max(grid - its error, threshold)
+        Final,     ///< `value` is all there is to know
+        Unvisited, ///< verticesAgainst has yet to look at it
+        Far,       ///< value = reach, below its distance to the target's box
+        Outside,   ///< value = its distance to the target's box; the coarse lower bound may say more
     };
     std::vector<Real> value;
     std::vector<State> state;
-    std::vector<Vec3> local; ///< the vertex in the target's frame, where a deferred bound needs it
-    std::vector<Real> grid;  ///< AboveThreshold, AboveOutsideCoarse: the target's coarse phi at `local`
-    std::vector<Real> floor; ///< AboveOutsideCoarse: the distance to the target's box
-    Real edgeReach = 0.0;
-    Real threshold = 0.0;
+    std::vector<Vec3> local;          ///< Outside: the vertex in the target's frame
     Mat3 rotation = Mat3::Identity(); ///< body frame of the vertices -> target frame
     Vec3 shift = Vec3::Zero();
 
-    // A bound between the cheap one and the exact one: for a vertex outside the target's box, the
-    // target's coarse phi less its error as well. The exact bound is never below it.
-    Real better(std::size_t v, const Target& target)
-    {
-        if (state[v] == State::AboveOutside)
-        {
-            floor[v] = value[v];
-            grid[v] = target.coarse(local[v]);
-            value[v] = std::max(value[v], grid[v] - target.gridError());
-            state[v] = State::AboveOutsideCoarse;
-        }
-        return value[v];
-    }
-
-    // The exact bound of vertex v, computed once when deferred.
-    Real exact(const std::vector<Vec3>& vertices, std::size_t v, const Target& target)
+    // The better bound of vertex v, computed once when an edge asks for it.
+    Real tighter(const std::vector<Vec3>& vertices, std::size_t v, const Target& target)
     {
         switch (state[v])
         {
         case State::Far:
-            // what verticesAgainst would have found: farther than the threshold and the edge reach
             value[v] = std::sqrt(squaredDistanceToBox(rotation * vertices[v] + shift, target.lower, target.upper));
             break;
-        case State::AboveOutside:
-            value[v] = std::max(value[v], target.lowerBound(local[v], edgeReach));
-            break;
-        case State::AboveOutsideCoarse:
-            value[v] = std::max(floor[v], target.lowerBound(local[v], edgeReach, grid[v]));
-            break;
-        case State::AboveThreshold:
-            value[v] = std::max(target.lowerBound(local[v], edgeReach, grid[v]), threshold);
+        case State::Outside:
+            value[v] = std::max(value[v], target.coarseLowerBound(local[v]));
             break;
         default:
             break;
         }
-        state[v] = State::Exact;
+        state[v] = State::Final;
         return value[v];
     }
 };
@@ -292,10 +254,6 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
     bounds.value.resize(vertices.size());
     bounds.state.resize(vertices.size());
     bounds.local.resize(vertices.size());
-    bounds.grid.resize(vertices.size());
-    bounds.floor.resize(vertices.size());
-    bounds.edgeReach = edgeReach;
-    bounds.threshold = threshold;
     // body frame of the vertices -> target frame in one affine map
     bounds.rotation = target.pose.rotation.transpose() * pose.rotation;
     bounds.shift = target.pose.rotation.transpose() * (pose.position - target.pose.position);
@@ -319,15 +277,15 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
         const Real outside = std::sqrt(squaredDistanceToBox(local, target.lower, target.upper));
         if (outside > 0.0 && outside >= threshold)
         {
-            // phi >= the distance to the target's bounding box
+            // phi >= the distance to the target's bounding box: enough for any edge beyond the reach
             bounds.value[v] = outside;
             if (outside >= edgeReach)
             {
-                bounds.state[v] = State::Exact;
+                bounds.state[v] = State::Final;
             }
             else
             {
-                bounds.state[v] = State::AboveOutside; // max(outside, lowerBound) when needed
+                bounds.state[v] = State::Outside;
                 bounds.local[v] = local;
             }
             continue;
@@ -337,23 +295,14 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
         {
             addContact(pose.toWorld(vertices[v]), target, d, side, out);
             bounds.value[v] = -kInfinity;
-            bounds.state[v] = State::Exact;
-        }
-        else if (d.exact)
-        {
-            // not a sample point, so phi >= threshold whatever the grid's error
-            bounds.value[v] = std::max(d.phi, threshold);
-            bounds.state[v] = State::Exact;
         }
         else
         {
-            // max(lowerBound, threshold) when needed; d.phi is the grid's value there, and the exact
-            // bound is never below it less the grid's error (MeshGeometry::distanceLowerBound)
-            bounds.value[v] = std::max(threshold, d.phi - target.gridError());
-            bounds.grid[v] = d.phi;
-            bounds.local[v] = local;
-            bounds.state[v] = State::AboveThreshold;
+            // not a sample point, so phi >= threshold; a grid value is at most its error above phi
+            // here, within the target's box and so within its grid
+            bounds.value[v] = std::max(threshold, d.exact ? d.phi : d.phi - target.gridError());
         }
+        bounds.state[v] = State::Final;
     }
 }
 
@@ -378,17 +327,11 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
         {
             continue; // phi is 1-Lipschitz: balls of radius phi about the ends cover the edge
         }
-        if (bounds.state[edge[0]] != VertexBounds::State::Exact || bounds.state[edge[1]] != VertexBounds::State::Exact)
+        if (bounds.state[edge[0]] != VertexBounds::State::Final || bounds.state[edge[1]] != VertexBounds::State::Final)
         {
-            // the cheap bounds are below the better ones, and those below the exact ones; the sum and
-            // square round monotonically: an edge a lower pair covers is covered by the exact bounds
-            // too, so each is computed only when the one below does not cover the edge
-            reach = bounds.better(edge[0], target) + bounds.better(edge[1], target);
-            if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
-            {
-                continue;
-            }
-            reach = bounds.exact(vertices, edge[0], target) + bounds.exact(vertices, edge[1], target);
+            // the bounds that wait are worked out only for an edge the cheap ones leave open; a
+            // tree search for phi itself would cost about what the crossing test costs
+            reach = bounds.tighter(vertices, edge[0], target) + bounds.tighter(vertices, edge[1], target);
             if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
             {
                 continue;

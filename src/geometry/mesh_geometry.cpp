@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Preparing a solid mesh: welding, validation, mass properties, body frame, hierarchy and grid.
+#include "geometry/box_queries.hpp"
 #include "geometry/signed_distance_grid.hpp"
 #include "geometry/triangle_bvh.hpp"
 
@@ -381,9 +382,13 @@ MeshDistance MeshGeometry::gridDistance(const Vec3& pointBody) const
     return m_grid->sample(pointBody);
 }
 
-Real MeshGeometry::gridPhi(const Vec3& pointBody) const
+Real MeshGeometry::coarseLowerBound(const Vec3& pointBody) const
 {
-    return m_grid->samplePhi(pointBody);
+    if (m_grid->contains(pointBody))
+    {
+        return m_grid->samplePhi(pointBody) - gridError();
+    }
+    return std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
 }
 
 MeshDistance MeshGeometry::exactDistance(const Vec3& pointBody) const
@@ -442,21 +447,6 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
     }
     const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse.phi));
     return closest.found ? distanceFrom(pointBody, closest) : SignedDistanceGrid::withGradient(coarse);
-}
-
-Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed) const
-{
-    return distanceLowerBound(pointBody, needed, m_grid->samplePhi(pointBody));
-}
-
-Real MeshGeometry::distanceLowerBound(const Vec3& pointBody, Real needed, Real coarse) const
-{
-    if (coarse - gridError() >= needed)
-    {
-        return coarse - gridError();
-    }
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse));
-    return closest.found ? TriangleBvh::signedDistance(pointBody, closest) : coarse - gridError();
 }
 
 Real MeshGeometry::searchRadius(Real gridPhi) const

@@ -36,6 +36,11 @@ class SignedDistanceGrid
     /// phi and its unit gradient from a stencil: the same as sample() at its point.
     static MeshDistance withGradient(const Stencil& stencil);
 
+    /// Whether p lies within the sampled box, where phi is interpolated rather than extended.
+    bool contains(const Vec3& p) const
+    {
+        return (p.array() >= m_origin.array()).all() && (p.array() <= m_far.array()).all();
+    }
     Real cellSize() const { return m_cell; }
     const std::array<int, 3>& samples() const { return m_samples; }
     /// Cells of padding around the mesh's bounding box.

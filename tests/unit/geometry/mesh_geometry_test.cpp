@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -282,25 +283,29 @@ TEST(MeshDistance, OutsideTheGridDistanceGrowsWithTheWayToTheGrid)
     }
 }
 
-TEST(MeshDistance, LowerBoundIsExactBelowWhatIsNeededAndTakesAKnownGridValue)
+TEST(MeshDistance, CoarseLowerBoundNeverExceedsTheExactDistance)
 {
+    // the mesh narrow phase passes over an edge whose ends' bounds cover it: near the surface, deep
+    // inside, beyond the exact band and outside the grid, where the grid's own extension is an upper
+    // bound of phi, not a lower one
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
     const Real cell = torus->cellSize();
-    for (const Vec3& p : samplePoints(Vec3(0.25 + 3.0 * cell, 0.25 + 3.0 * cell, 0.05 + 3.0 * cell), 5000, 4))
+    Real tightest = std::numeric_limits<Real>::infinity();
+    int outsideTheGrid = 0;
+    for (const Vec3& reach : {Vec3(0.25 + 2.0 * cell, 0.25 + 2.0 * cell, 0.05 + 2.0 * cell), Vec3(0.7, 0.7, 0.5)})
     {
-        const Real exact = torus->exactDistance(p).phi;
-        for (const Real needed : {0.0, 0.01, 0.05})
+        for (const Vec3& p : samplePoints(reach, 4000, 4))
         {
-            const Real bound = torus->distanceLowerBound(p, needed);
-            EXPECT_LE(bound, exact + 1e-15) << p.transpose();
-            if (exact < needed)
-            {
-                EXPECT_NEAR(bound, exact, 1e-15) << p.transpose();
-            }
-            // the caller's grid value spares a second sample and changes nothing
-            EXPECT_EQ(torus->distanceLowerBound(p, needed, torus->gridDistance(p).phi), bound) << p.transpose();
+            const Real exact = torus->exactDistance(p).phi;
+            const Real bound = torus->coarseLowerBound(p);
+            EXPECT_LE(bound, exact) << p.transpose();
+            tightest = std::min(tightest, exact - bound);
+            outsideTheGrid += (p.cwiseAbs() - Vec3(0.25, 0.25, 0.05)).maxCoeff() > 3.0 * cell ? 1 : 0;
         }
     }
+    EXPECT_GT(outsideTheGrid, 1000);
+    // and it says something: near the surface it comes within a cell of the truth
+    EXPECT_LT(tightest, cell);
 }
 
 TEST(MeshDistance, SegmentCrossingsOfABoxAreItsFaces)
