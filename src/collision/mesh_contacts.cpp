@@ -635,7 +635,8 @@ namespace
 // The least of phi over the vertices of `points` (at `pose`) against `target`, or `least` if none is
 // lower. Each phi that is computed is what verticesAgainst computes with an infinite threshold; a
 // vertex is passed over when a lower bound of that phi (its distance to the target's box, or the
-// grid less its error) is above the least so far by more than round-off, so the result is the same.
+// target's coarse lower bound) is above the least so far by more than round-off, so the result is
+// the same.
 Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeometry& target, const Pose& targetPose,
                      Real least)
 {
@@ -661,7 +662,7 @@ Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeo
         {
             const Vec3 local = rotation * vertices[members[i]] + shift;
             if (aboveLeast(std::sqrt(squaredDistanceToBox(local, target.lower(), target.upper()))) ||
-                target.gridDistance(local).phi - target.gridError() > least + slack)
+                target.coarseLowerBound(local) > least + slack)
             {
                 continue;
             }
