@@ -440,7 +440,10 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
     // the grid's gradient only where its value is the answer
     const SignedDistanceGrid::Stencil coarse = m_grid->stencil(pointBody);
     const Real cell = m_grid->cellSize();
-    if (coarse.phi - gridError() >= threshold || coarse.phi < -3.0 * cell)
+    // the same lower bound as coarseLowerBound, from the stencil at hand
+    const Real lowerBound = m_grid->contains(pointBody) ? coarse.phi - gridError()
+                                                        : std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
+    if (lowerBound >= threshold || coarse.phi < -3.0 * cell)
     {
         return SignedDistanceGrid::withGradient(coarse); // certainly not touching, or deep inside where
                                                          // the grid's normal serves

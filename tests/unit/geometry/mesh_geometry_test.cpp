@@ -308,6 +308,25 @@ TEST(MeshDistance, CoarseLowerBoundNeverExceedsTheExactDistance)
     EXPECT_LT(tightest, cell);
 }
 
+TEST(MeshDistance, PointsWithinTheThresholdAreFoundOutsideTheGridToo)
+{
+    // a capsule's sample balls ask with threshold + radius, which can reach past the grid, where the
+    // grid's extension exceeds phi: a point within the threshold must still come back as such
+    const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
+    const Real cell = torus->cellSize();
+    int outsideTheGrid = 0;
+    for (const Vec3& p : samplePoints(Vec3(0.7, 0.7, 0.5), 4000, 5))
+    {
+        const Real exact = torus->exactDistance(p).phi;
+        const Real threshold = exact + 0.25 * cell;
+        const MeshDistance d = torus->distance(p, threshold);
+        EXPECT_LT(d.phi, threshold) << p.transpose();
+        EXPECT_NEAR(d.phi, exact, 1e-12) << p.transpose();
+        outsideTheGrid += (p.cwiseAbs() - Vec3(0.25, 0.25, 0.05)).maxCoeff() > 3.0 * cell ? 1 : 0;
+    }
+    EXPECT_GT(outsideTheGrid, 1000);
+}
+
 TEST(MeshDistance, SegmentCrossingsOfABoxAreItsFaces)
 {
     const auto box = MeshGeometry::build(boxMesh(Vec3(0.3, 0.2, 0.1), 3));
