@@ -383,6 +383,17 @@ bool farApart(const Pose& poseA, Real radiusA, const Pose& poseB, Real radiusB, 
     return (poseA.position - poseB.position).norm() - radiusA - radiusB >= threshold;
 }
 
+// Whether the bounding boxes of two bodies' points (body frame [lower, upper] each) are farther
+// apart than the threshold: then no point of either is within it of the other, and no edge of one
+// reaches into the other.
+bool boxesApart(const Pose& poseA, const Vec3& lowerA, const Vec3& upperA, const Pose& poseB, const Vec3& lowerB,
+                const Vec3& upperB, Real threshold)
+{
+    return orientedBoxesApart(poseA.toWorld(0.5 * (lowerA + upperA)), poseA.rotation, 0.5 * (upperA - lowerA),
+                              poseB.toWorld(0.5 * (lowerB + upperB)), poseB.rotation, 0.5 * (upperB - lowerB),
+                              std::max(threshold, Real(0.0)));
+}
+
 } // namespace
 
 void collideMeshPlane(const Mesh& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
@@ -464,7 +475,8 @@ void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& 
                     std::vector<ContactPoint>& out)
 {
     const MeshGeometry& mesh = *b.geometry;
-    if (farApart(poseA, a.halfExtents.norm(), poseB, mesh.boundingRadius(), threshold))
+    if (farApart(poseA, a.halfExtents.norm(), poseB, mesh.boundingRadius(), threshold) ||
+        boxesApart(poseA, -a.halfExtents, a.halfExtents, poseB, mesh.lower(), mesh.upper(), threshold))
     {
         return;
     }
@@ -684,7 +696,9 @@ void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose
                      std::vector<ContactPoint>& out)
 {
     // bodies too far apart for any point are told apart before any memory is spent on them
-    if (farApart(poseA, a.geometry->boundingRadius(), poseB, b.geometry->boundingRadius(), threshold))
+    if (farApart(poseA, a.geometry->boundingRadius(), poseB, b.geometry->boundingRadius(), threshold) ||
+        boxesApart(poseA, a.geometry->lower(), a.geometry->upper(), poseB, b.geometry->lower(), b.geometry->upper(),
+                   threshold))
     {
         return;
     }
