@@ -294,21 +294,25 @@ void WorldImpl::beginSweepingPass()
     quietPairs.resize(pairs.size());
 }
 
+int WorldImpl::resolveUnlessQuiet(std::uint32_t k, Real eps, ThreadScratch& local, const PassSettings& settings)
+{
+    RigidBody& a = bodies[pairs[k].a];
+    RigidBody& b = bodies[pairs[k].b];
+    if (quietPairs[k].holds(pass, a, b))
+    {
+        return 0;
+    }
+    const Resolution done = resolvePair(a, b, eps, pairCoefficients[k].friction, settings, local.points);
+    quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
+    return done.impulses;
+}
+
 int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const PassSettings& settings)
 {
     int applied = 0;
     for (const std::uint32_t k : island.pairs)
     {
-        RigidBody& a = bodies[pairs[k].a];
-        RigidBody& b = bodies[pairs[k].b];
-        if (quietPairs[k].holds(pass, a, b))
-        {
-            continue;
-        }
-        const Resolution done =
-            resolvePair(a, b, pairCoefficients[k].restitution, pairCoefficients[k].friction, settings, local.points);
-        applied += done.impulses;
-        quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
+        applied += resolveUnlessQuiet(k, pairCoefficients[k].restitution, local, settings);
     }
     return applied;
 }
@@ -615,16 +619,7 @@ int WorldImpl::sweepLevels(Island& island, ThreadScratch& local, Real eps, bool 
         }
         for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
         {
-            const std::uint32_t k = island.twoWayPairs[n];
-            RigidBody& a = bodies[pairs[k].a];
-            RigidBody& b = bodies[pairs[k].b];
-            if (quietPairs[k].holds(pass, a, b))
-            {
-                continue;
-            }
-            const Resolution done = resolvePair(a, b, eps, pairCoefficients[k].friction, settings, local.points);
-            applied += done.impulses;
-            quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
+            applied += resolveUnlessQuiet(island.twoWayPairs[n], eps, local, settings);
         }
     }
     return applied;

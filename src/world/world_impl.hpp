@@ -126,6 +126,8 @@ class WorldImpl
     int sweepLevels(Island& island, ThreadScratch& scratch, Real eps, bool freezeLowerLevels,
                     const PassSettings& settings);
     void beginSweepingPass();
+    /// resolvePair on pair k with restitution eps, unless it was found quiet at these very poses.
+    int resolveUnlessQuiet(std::uint32_t k, Real eps, ThreadScratch& scratch, const PassSettings& settings);
 };
 
 } // namespace impulse
