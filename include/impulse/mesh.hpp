@@ -136,6 +136,8 @@ class MeshGeometry
   private:
     MeshGeometry();
     MeshDistance distanceFrom(const Vec3& pointBody, const SurfacePoint& closest) const;
+    /// coarseLowerBound(pointBody) where gridPhi is the grid's value there, already at hand.
+    Real lowerBoundFromGrid(const Vec3& pointBody, Real gridPhi) const;
     /// How far the closest triangle can be from a point whose grid value is gridPhi.
     Real searchRadius(Real gridPhi) const;
     /// Splits m_vertexClusterMembers[first, first + count) at the median along its longest axis

@@ -205,15 +205,20 @@ struct VertexBounds
     }
 };
 
+// A bound on how much `rotation` can lengthen a vector, |rotation x| <= stretch |x|: a rotation up to
+// round-off, bounded all the same so that far-away tests built on it stay sound.
+Real rotationStretch(const Mat3& rotation)
+{
+    return std::sqrt(1.0 + (rotation.transpose() * rotation - Mat3::Identity()).norm()) * (1.0 + 1e-9);
+}
+
 // Marks Far the vertices of every cluster that lies, with a wide margin for round-off, farther than
 // `reach` from the target's box, so that each of its vertices is: neither a sample point nor in need
 // of a distance query, its bound its distance to the box, and that at least `reach`.
 void markFarClusters(const MeshGeometry& mesh, const Target& target, Real reach, VertexBounds& bounds)
 {
     using State = VertexBounds::State;
-    // |rotation x| <= stretch |x|: the map is a rotation up to round-off, but bound it all the same
-    const Real stretch =
-        std::sqrt(1.0 + (bounds.rotation.transpose() * bounds.rotation - Mat3::Identity()).norm()) * (1.0 + 1e-9);
+    const Real stretch = rotationStretch(bounds.rotation);
     // far above the round-off of the vertices' and the centres' transforms and box distances
     // (a few units in the last place of these magnitudes)
     const Real slack = 1e-9 * (bounds.shift.norm() + mesh.boundingRadius() + target.lower.cwiseAbs().maxCoeff() +
@@ -656,8 +661,7 @@ Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeo
     const Vec3 shift = targetPose.rotation.transpose() * (pose.position - targetPose.position);
     // round-off of the transforms and of the bounds, far above a few units in the last place
     const Real slack = 1e-9 * (shift.norm() + points.boundingRadius() + target.boundingRadius() + target.cellSize());
-    // |rotation x| <= stretch |x|: a rotation up to round-off, bounded all the same
-    const Real stretch = std::sqrt(1.0 + (rotation.transpose() * rotation - Mat3::Identity()).norm()) * (1.0 + 1e-9);
+    const Real stretch = rotationStretch(rotation);
     const std::vector<Vec3>& vertices = points.vertices();
     const std::vector<std::uint32_t>& members = points.vertexClusterMembers();
     // phi is at least the distance to the target's box, where that is positive: outside the box

@@ -384,11 +384,14 @@ MeshDistance MeshGeometry::gridDistance(const Vec3& pointBody) const
 
 Real MeshGeometry::coarseLowerBound(const Vec3& pointBody) const
 {
-    if (m_grid->contains(pointBody))
-    {
-        return m_grid->samplePhi(pointBody) - gridError();
-    }
-    return std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
+    return lowerBoundFromGrid(pointBody, m_grid->samplePhi(pointBody));
+}
+
+Real MeshGeometry::lowerBoundFromGrid(const Vec3& pointBody, Real gridPhi) const
+{
+    // outside the grid its extension is an upper bound of phi; the distance to the box is a lower one
+    return m_grid->contains(pointBody) ? gridPhi - gridError()
+                                       : std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
 }
 
 MeshDistance MeshGeometry::exactDistance(const Vec3& pointBody) const
@@ -440,10 +443,7 @@ MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
     // the grid's gradient only where its value is the answer
     const SignedDistanceGrid::Stencil coarse = m_grid->stencil(pointBody);
     const Real cell = m_grid->cellSize();
-    // the same lower bound as coarseLowerBound, from the stencil at hand
-    const Real lowerBound = m_grid->contains(pointBody) ? coarse.phi - gridError()
-                                                        : std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
-    if (lowerBound >= threshold || coarse.phi < -3.0 * cell)
+    if (lowerBoundFromGrid(pointBody, coarse.phi) >= threshold || coarse.phi < -3.0 * cell)
     {
         return SignedDistanceGrid::withGradient(coarse); // certainly not touching, or deep inside where
                                                          // the grid's normal serves
