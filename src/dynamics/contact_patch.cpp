@@ -65,14 +65,19 @@ bool distributeOverPatch(const std::vector<PatchPoint>& patch, const Eigen::Vect
     const Vec3 tilt = moment - twist * normal;
 
     // loads: their sum is the normal force, their moment about the centroid the tilting moment
-    Eigen::MatrixXd equations(4, static_cast<Eigen::Index>(n));
+    // kept per thread, as in the least-squares solve: a patch of a size seen before allocates nothing
+    thread_local Eigen::Matrix4Xd equations;
+    thread_local Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix4Xd> decomposition;
+    thread_local Eigen::VectorXd loads;
+    equations.resize(4, static_cast<Eigen::Index>(n));
     for (std::size_t k = 0; k < n; ++k)
     {
         const Vec3 arm = (patch[k].contact.point - origin).cross(normal);
         equations.col(static_cast<Eigen::Index>(k)) << 1.0, arm.x(), arm.y(), arm.z();
     }
     const Eigen::Vector4d required(normalForce, tilt.x(), tilt.y(), tilt.z());
-    const Eigen::VectorXd loads = equations.completeOrthogonalDecomposition().solve(required);
+    decomposition.compute(equations);
+    loads = decomposition.solve(required);
     if (!loads.allFinite() || (equations * loads - required).norm() > 1e-9 * required.norm())
     {
         return false;
@@ -144,30 +149,12 @@ struct PatchLeastSquares
     Eigen::VectorXd reached;
 };
 
-void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
-                            const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
-                            PatchLeastSquares& result)
+// Fills A (3 rows per point, 6 columns per movable body) for solvePatchLeastSquares.
+template <class Matrix>
+void fillPatchMatrix(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
+                     const std::vector<Vec3>& partnerLever, const std::vector<const RigidBody*>& movable, Matrix& a)
 {
-    // the movable bodies, the patch's body first: each owns six columns of A
-    thread_local std::vector<const RigidBody*> movable;
-    movable.clear();
-    if (!body.immovable())
-    {
-        movable.push_back(&body);
-    }
-    for (const PatchPoint& point : patch)
-    {
-        if (!point.other->immovable() && std::find(movable.begin(), movable.end(), point.other) == movable.end())
-        {
-            movable.push_back(point.other);
-        }
-    }
-    const auto rows = static_cast<Eigen::Index>(3 * patch.size());
-    const auto columns = static_cast<Eigen::Index>(6 * movable.size());
-    // kept per thread: a patch of the size of an earlier one reuses their storage
-    thread_local Eigen::MatrixXd a;
-    thread_local Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> decomposition;
-    a.setZero(rows, columns);
+    a.setZero(static_cast<Eigen::Index>(3 * patch.size()), static_cast<Eigen::Index>(6 * movable.size()));
     for (std::size_t b = 0; b < movable.size(); ++b)
     {
         // M^-1/2 of body b: sqrt(1/m) for translation, R diag(sqrt(1/I)) R^T for rotation
@@ -189,20 +176,75 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
             Mat3 leverCross;
             leverCross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
             const auto row = static_cast<Eigen::Index>(3 * k);
-            a.block<3, 3>(row, column) = sign * rootInvMass * Mat3::Identity();
-            a.block<3, 3>(row, column + 3) = -sign * leverCross * rootInvInertia;
+            a.template block<3, 3>(row, column) = sign * rootInvMass * Mat3::Identity();
+            a.template block<3, 3>(row, column + 3) = -sign * leverCross * rootInvInertia;
         }
     }
+}
+
+// j = (A^+)^T A^+ t from a complete orthogonal decomposition of A, in `Matrix` and `Vector` storage.
+template <class Matrix, class Vector>
+void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoint>& patch,
+                               const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever,
+                               const std::vector<const RigidBody*>& movable, const Eigen::VectorXd& target,
+                               PatchLeastSquares& result)
+{
+    // kept per thread: a patch of the size of an earlier one reuses their storage
+    thread_local Matrix a;
+    thread_local Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition;
+    thread_local Vector rhs;
+    thread_local Vector leastNorm;
+    thread_local Vector impulses;
+    thread_local Vector image;
+    fillPatchMatrix(body, patch, lever, partnerLever, movable, a);
     // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide them
     // on W = A A^T, whose singular values are the squares of A's: relative to the largest, below the
     // square root of W's round-off
-    decomposition.setThreshold(std::sqrt(static_cast<Real>(rows) * std::numeric_limits<Real>::epsilon()));
+    decomposition.setThreshold(std::sqrt(static_cast<Real>(a.rows()) * std::numeric_limits<Real>::epsilon()));
     decomposition.compute(a);
     // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse
-    thread_local Eigen::VectorXd leastNorm;
-    leastNorm = decomposition.solve(target);
-    result.impulses = decomposition.transpose().solve(leastNorm);
-    result.reached = a * (a.transpose() * result.impulses);
+    rhs = target;
+    leastNorm = decomposition.solve(rhs);
+    impulses = decomposition.transpose().solve(leastNorm);
+    image.noalias() = a.transpose() * impulses;
+    result.impulses = impulses;
+    result.reached = a * image;
+}
+
+void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
+                            const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
+                            PatchLeastSquares& result)
+{
+    // the movable bodies, the patch's body first: each owns six columns of A
+    thread_local std::vector<const RigidBody*> movable;
+    movable.clear();
+    if (!body.immovable())
+    {
+        movable.push_back(&body);
+    }
+    for (const PatchPoint& point : patch)
+    {
+        if (!point.other->immovable() && std::find(movable.begin(), movable.end(), point.other) == movable.end())
+        {
+            movable.push_back(point.other);
+        }
+    }
+    // A body with up to eight points on up to one movable partner (a box on the ground or on
+    // another box) fits storage of fixed size, which spares the heap traffic of dynamic matrices
+    constexpr int kInlineRows = 24;
+    constexpr int kInlineColumns = 12;
+    if (3 * patch.size() <= kInlineRows && 6 * movable.size() <= kInlineColumns)
+    {
+        using Matrix =
+            Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kInlineRows, kInlineColumns>;
+        using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kInlineRows, 1>;
+        solveThroughDecomposition<Matrix, Vector>(body, patch, lever, partnerLever, movable, target, result);
+    }
+    else
+    {
+        solveThroughDecomposition<Eigen::MatrixXd, Eigen::VectorXd>(body, patch, lever, partnerLever, movable, target,
+                                                                    result);
+    }
 }
 
 // Target normal velocity of every point of a patch from its normal approach u_n (negative).
