@@ -182,13 +182,17 @@ void fillPatchMatrix(const RigidBody& body, const std::vector<PatchPoint>& patch
     }
 }
 
-// j = (A^+)^T A^+ t from a complete orthogonal decomposition of A, in `Matrix` and `Vector` storage.
-template <class Matrix, class Vector>
+// j = (A^+)^T A^+ t from a complete orthogonal decomposition of A, in storage of at most kMaxRows x
+// kMaxColumns (Eigen::Dynamic: on the heap).
+template <int kMaxRows, int kMaxColumns>
 void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoint>& patch,
                                const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever,
                                const std::vector<const RigidBody*>& movable, const Eigen::VectorXd& target,
                                PatchLeastSquares& result)
 {
+    using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxRows, kMaxColumns>;
+    using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor,
+                                 kMaxRows == Eigen::Dynamic ? Eigen::Dynamic : std::max(kMaxRows, kMaxColumns), 1>;
     // kept per thread: a patch of the size of an earlier one reuses their storage
     thread_local Matrix a;
     thread_local Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition;
@@ -229,21 +233,23 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
             movable.push_back(point.other);
         }
     }
-    // A body with up to eight points on up to one movable partner (a box on the ground or on
-    // another box) fits storage of fixed size, which spares the heap traffic of dynamic matrices
-    constexpr int kInlineRows = 24;
-    constexpr int kInlineColumns = 12;
-    if (3 * patch.size() <= kInlineRows && 6 * movable.size() <= kInlineColumns)
+    // Patches of the usual sizes fit storage of fixed size, which spares the heap traffic of dynamic
+    // matrices: a box on the ground or on one other box (up to 8 points, 12 columns), a ball among a
+    // dozen neighbours
+    const std::size_t rows = 3 * patch.size();
+    const std::size_t columns = 6 * movable.size();
+    if (rows <= 24 && columns <= 12)
     {
-        using Matrix =
-            Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kInlineRows, kInlineColumns>;
-        using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kInlineRows, 1>;
-        solveThroughDecomposition<Matrix, Vector>(body, patch, lever, partnerLever, movable, target, result);
+        solveThroughDecomposition<24, 12>(body, patch, lever, partnerLever, movable, target, result);
+    }
+    else if (rows <= 48 && columns <= 84)
+    {
+        solveThroughDecomposition<48, 84>(body, patch, lever, partnerLever, movable, target, result);
     }
     else
     {
-        solveThroughDecomposition<Eigen::MatrixXd, Eigen::VectorXd>(body, patch, lever, partnerLever, movable, target,
-                                                                    result);
+        solveThroughDecomposition<Eigen::Dynamic, Eigen::Dynamic>(body, patch, lever, partnerLever, movable, target,
+                                                                  result);
     }
 }
 
