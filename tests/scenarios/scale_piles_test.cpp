@@ -23,6 +23,7 @@ TEST(ReferenceScene11, TenThousandSpheresStayInTheBoxWithoutOverlaps)
 {
     expectPileStaysInTheBoxWithoutOverlaps("sphere_pile_10000", 0.1);
 }
+
 TEST(ReferenceScene12, TenThousandCubesStayInTheBoxWithoutOverlaps)
 {
     expectPileStaysInTheBoxWithoutOverlaps("box_pile_10000", 0.1);
