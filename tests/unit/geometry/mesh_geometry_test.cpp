@@ -2,6 +2,8 @@
 // Triangle meshes as solids: validation, mass properties by polyhedral integration against the
 // analytic solids, the body frame, and the signed distance (grid and exact) against analytic
 // distances.
+#include "geometry/signed_distance_grid.hpp"
+
 #include <impulse/io/mesh_file.hpp>
 #include <impulse/mesh.hpp>
 #include <impulse/mesh_shapes.hpp>
@@ -39,12 +41,12 @@ std::vector<Vec3> samplePoints(const Vec3& extent, int count, unsigned seed)
     return points;
 }
 
-// Whether p lies beyond the mesh's grid, which pads its bounding box by three cells.
+// Whether p lies beyond the padding the mesh's grid adds around its bounding box.
 bool beyondTheGrid(const MeshGeometry& mesh, const Vec3& p)
 {
     const Vec3 centre = 0.5 * (mesh.lower() + mesh.upper());
     const Vec3 half = 0.5 * (mesh.upper() - mesh.lower());
-    return ((p - centre).cwiseAbs() - half).maxCoeff() > 3.0 * mesh.cellSize();
+    return ((p - centre).cwiseAbs() - half).maxCoeff() > SignedDistanceGrid::kPadding * mesh.cellSize();
 }
 
 std::string buildError(const TriangleMesh& mesh)
