@@ -198,7 +198,6 @@ void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoi
     thread_local Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition;
     thread_local Vector rhs;
     thread_local Vector leastNorm;
-    thread_local Vector impulses;
     thread_local Vector image;
     fillPatchMatrix(body, patch, lever, partnerLever, movable, a);
     // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide them
@@ -206,12 +205,12 @@ void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoi
     // square root of W's round-off
     decomposition.setThreshold(std::sqrt(static_cast<Real>(a.rows()) * std::numeric_limits<Real>::epsilon()));
     decomposition.compute(a);
-    // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse
+    // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse. The
+    // solves' temporaries take the type of their right-hand side, so t is copied into `Vector` first.
     rhs = target;
     leastNorm = decomposition.solve(rhs);
-    impulses = decomposition.transpose().solve(leastNorm);
-    image.noalias() = a.transpose() * impulses;
-    result.impulses = impulses;
+    result.impulses = decomposition.transpose().solve(leastNorm);
+    image.noalias() = a.transpose() * result.impulses;
     result.reached = a * image;
 }
 
