@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace impulse
 {
@@ -25,6 +26,17 @@ enum class Scheme
     /// The textbook order: update velocities and positions, then detect and resolve collisions
     /// (material restitution) and contacts at the new positions. For comparison.
     Traditional,
+};
+
+/// Everything a world carries from one step to the next: the clock and every body's state exactly
+/// as stored (the quaternion not renormalised, the angular momentum not rebuilt from the angular
+/// velocity). Restored into the world it came from, or into one built from the same scene, it
+/// continues the trajectory bit for bit, so a fault deep into a long run can be reached again in
+/// seconds.
+struct WorldSnapshot
+{
+    Real time = 0.0;
+    std::vector<BodyState> bodies; ///< every body in creation order, static ones included
 };
 
 /// Controls of one time step. Defaults are those of Guendelman, Bridson & Fedkiw 2003.
@@ -118,6 +130,14 @@ class World
     /// std::invalid_argument for a static body or non-finite values.
     void setState(BodyId body, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
                   const Vec3& angularVelocity);
+
+    /// The state between steps, exactly; see WorldSnapshot.
+    WorldSnapshot snapshot() const;
+    /// Puts back a snapshot of this world or of one built the same way. Throws std::invalid_argument
+    /// naming the body and field when the snapshot does not fit: another body count, a static body
+    /// that is not where it is here, non-finite values, a quaternion that is not of unit length
+    /// (within 1e-9), or an angular velocity that does not follow from the angular momentum.
+    void restore(const WorldSnapshot& snapshot);
 
     /// Advances the world by options.dt with the separated collision / contact time step.
     void step(const StepOptions& options);

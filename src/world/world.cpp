@@ -192,6 +192,61 @@ void World::setState(BodyId id, const Vec3& position, const Quat& orientation, c
     body.predicted = body.pose();
 }
 
+WorldSnapshot World::snapshot() const
+{
+    WorldSnapshot snapshot;
+    snapshot.time = m_impl->time;
+    snapshot.bodies.reserve(m_impl->bodies.size());
+    for (std::uint32_t b = 0; b < m_impl->bodies.size(); ++b)
+    {
+        snapshot.bodies.push_back(state(BodyId{b}));
+    }
+    return snapshot;
+}
+
+void World::restore(const WorldSnapshot& snapshot)
+{
+    std::vector<RigidBody>& bodies = m_impl->bodies;
+    require(snapshot.bodies.size() == bodies.size(), "bodies",
+            "the snapshot has " + std::to_string(snapshot.bodies.size()) + " bodies, the world " +
+                std::to_string(bodies.size()));
+    require(std::isfinite(snapshot.time), "time", "must be finite");
+    // Check everything before changing anything, so that a refused snapshot leaves the world as it was.
+    std::vector<RigidBody> restored = bodies;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+    {
+        const BodyState& s = snapshot.bodies[b];
+        RigidBody& body = restored[b];
+        const std::string field = "bodies/" + std::to_string(b) + "/";
+        if (!body.dynamic)
+        {
+            require(s.position == body.position && s.orientation.coeffs() == body.orientation.coeffs(),
+                    field + "position", "a static body cannot move");
+            require(s.linearVelocity.isZero(0.0) && s.angularMomentum.isZero(0.0), field + "velocity",
+                    "a static body cannot move");
+            continue;
+        }
+        require(finite(s.position), field + "position", "must be finite");
+        require(finite(s.linearVelocity), field + "velocity", "must be finite");
+        require(finite(s.angularMomentum), field + "angular_momentum", "must be finite");
+        require(s.orientation.coeffs().allFinite() && std::abs(s.orientation.norm() - 1.0) <= 1e-9,
+                field + "orientation", "must be a finite unit quaternion");
+        body.position = s.position;
+        body.orientation = s.orientation; // as stored: renormalising would move the trajectory
+        body.rotation = body.orientation.toRotationMatrix();
+        body.linearVelocity = s.linearVelocity;
+        body.angularMomentum = s.angularMomentum;
+        updateDerivedQuantities(body);
+        body.predicted = body.pose();
+        // The angular velocity is derived; one that differs says the snapshot was edited or comes
+        // from another world, and which of the two to believe would be a guess.
+        require(body.angularVelocity == s.angularVelocity, field + "angular_velocity",
+                "does not follow from the angular momentum and orientation (it is derived from them)");
+    }
+    bodies = std::move(restored);
+    m_impl->time = snapshot.time;
+}
+
 void World::step(const StepOptions& options)
 {
     if (!(options.dt > 0.0) || !std::isfinite(options.dt))

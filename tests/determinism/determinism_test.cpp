@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace impulse::test
 {
@@ -148,6 +150,82 @@ TEST(Islands, AStackMovesTheSameWithOrWithoutAnotherFarAway)
     EXPECT_EQ(alone, 1);
     EXPECT_EQ(together, 2);
     EXPECT_TRUE(withoutSecond == withSecond) << "a stack 3 m away changed the first stack's trajectory";
+}
+
+// Steps the world `steps` times with default options and returns its state hash.
+std::uint64_t hashAfter(World& world, int steps)
+{
+    for (int step = 0; step < steps; ++step)
+    {
+        world.step({});
+    }
+    return world.stateHash();
+}
+
+TEST(Snapshot, ContinuesTheTrajectoryBitForBit)
+{
+    std::vector<BodyId> dynamic;
+    World world = fourHeaps(dynamic);
+    hashAfter(world, 300); // the heaps are falling onto one another and turning
+    const WorldSnapshot middle = world.snapshot();
+    const std::uint64_t straightOn = hashAfter(world, 200);
+
+    world.restore(middle); // back in time, in the same world
+    EXPECT_EQ(world.time(), middle.time);
+    EXPECT_EQ(hashAfter(world, 200), straightOn);
+
+    std::vector<BodyId> ignored;
+    World fresh = fourHeaps(ignored); // a world built the same way, never stepped
+    fresh.restore(middle);
+    EXPECT_EQ(hashAfter(fresh, 200), straightOn);
+}
+
+TEST(Snapshot, ThatDoesNotFitIsRefusedAndChangesNothing)
+{
+    std::vector<BodyId> dynamic;
+    World world = fourHeaps(dynamic);
+    hashAfter(world, 50);
+    const WorldSnapshot good = world.snapshot();
+    const std::uint64_t before = world.stateHash();
+    const auto refusal = [&](const WorldSnapshot& bad)
+    {
+        try
+        {
+            world.restore(bad);
+        }
+        catch (const std::invalid_argument& error)
+        {
+            return std::string(error.what());
+        }
+        return std::string("accepted");
+    };
+    const std::uint32_t last = dynamic.back().index;
+    const std::string lastBody = "bodies/" + std::to_string(last) + "/";
+
+    WorldSnapshot bad = good;
+    bad.bodies.pop_back();
+    EXPECT_EQ(refusal(bad), "bodies: the snapshot has 48 bodies, the world 49");
+
+    bad = good;
+    bad.bodies[0].position.z() = 0.1; // the ground plane
+    EXPECT_EQ(refusal(bad), "bodies/0/position: a static body cannot move");
+
+    bad = good;
+    bad.bodies[last].orientation.coeffs() *= 1.001;
+    EXPECT_EQ(refusal(bad), lastBody + "orientation: must be a finite unit quaternion");
+
+    bad = good;
+    bad.bodies[last].linearVelocity.x() = std::nan("");
+    EXPECT_EQ(refusal(bad), lastBody + "velocity: must be finite");
+
+    bad = good;
+    bad.bodies[last].angularVelocity.x() += 1.0;
+    EXPECT_EQ(refusal(bad), lastBody +
+                                "angular_velocity: does not follow from the angular momentum and orientation (it "
+                                "is derived from them)");
+
+    EXPECT_EQ(world.stateHash(), before) << "a refused snapshot changed the world";
+    EXPECT_EQ(world.time(), good.time);
 }
 
 TEST(StateHash, ChangesWithTheStateAndNotWithoutIt)
