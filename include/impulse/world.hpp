@@ -63,12 +63,12 @@ struct StepOptions
     /// iterations. Costs exact momentum conservation within that sweep.
     bool shockPropagation = true;
     /// After the position update, move bodies that overlap deeper than pushOutAllowance apart:
-    /// positions only, level by level up the contact graph with lower levels held still. The passes
-    /// only remove approach, so an overlap left by a dense impact would otherwise stay for as long
-    /// as the bodies rest on each other.
+    /// poses only (translated and turned; velocities and angular momenta kept), level by level up the contact graph
+    /// with lower levels held still. The passes only remove approach, so an overlap left by a dense impact would
+    /// otherwise stay for as long as the bodies rest on each other.
     bool pushOut = true;
     Real pushOutAllowance = 1e-4; ///< m; shallower overlaps are left alone
-    Real pushOutSpeed = 10.0;     ///< m/s; no body moves further than this times dt in one step
+    Real pushOutSpeed = 10.0;     ///< m/s; no point of a body moves further than this times dt in one step
     int pushOutIterations = 2;    ///< sweeps up the levels; stops early after one that moves nothing
     /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
     /// hardware thread. Trajectories are bit-identical whatever the number.

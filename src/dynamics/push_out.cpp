@@ -5,16 +5,21 @@
 // as long as the bodies rest on each other. Push-out changes positions only: velocities, and so the
 // kinetic energy the passes settled, are left as they are.
 //
-// A push is a translation. Solving for a rotation too would spin a body that the contact pass has
-// just brought to rest, on points whose depths are only first-order estimates; a translation
-// cannot, and what it leaves of a tilted overlap heals through motion.
+// A push moves a body as a whole, translation and rotation, by the least change of pose that brings
+// every point to phi >= 0 (to first order), measured in the body's mass metric: the displacement
+// (dx, dtheta) minimising m|dx|^2 + dtheta.I dtheta, as a pseudo-impulse would move it. A translation
+// alone cannot clear a wedge, a tilted ring jammed on a bar with overlaps on opposite faces; turning
+// it can, and the mass metric makes a heavy body move less than a light one and a long lever turn
+// little.
 //
-// The move is the least-norm translation dx with phi_i + n_i . dx >= 0 for every point i, solved by
-// projected Gauss-Seidel on the point displacements lambda_i >= 0 (dx = sum lambda_i n_i): a small
-// convex problem in three unknowns, which converges in a few sweeps.
+// The move is solved by projected Gauss-Seidel on one pseudo-impulse lambda_i >= 0 per point: each
+// point's J_i = (n_i, r_i x n_i) maps the move to its normal displacement, and the move is
+// M^-1 sum lambda_i J_i^T. A small convex problem in six (or twelve) unknowns, which converges in a
+// few sweeps.
 #include "dynamics/push_out.hpp"
 
 #include "collision/narrow_phase.hpp"
+#include "dynamics/integrate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,24 +38,66 @@ bool deeperThan(const std::vector<ContactPoint>& points, Real allowance)
     return std::any_of(points.begin(), points.end(), [&](const ContactPoint& p) { return p.phi < -allowance; });
 }
 
-// Least-norm dx with phi_i + n_i . dx >= 0 for all points (projected Gauss-Seidel on lambda_i >= 0).
-Vec3 separatingMove(const std::vector<ContactPoint>& points, std::vector<Real>& lambda)
+/// A body's part in a push: how a pseudo-impulse moves it, and the move so far.
+struct PushedBody
+{
+    Vec3 centre = Vec3::Zero();
+    Real invMass = 0.0;
+    Mat3 invInertia = Mat3::Zero(); ///< world frame
+    Vec3 move = Vec3::Zero();       ///< translation
+    Vec3 turn = Vec3::Zero();       ///< rotation vector
+
+    explicit PushedBody(const RigidBody& body, bool held)
+        : centre(body.position), invMass(held ? 0.0 : body.invMass),
+          invInertia(held ? Mat3::Zero() : body.invInertiaWorld)
+    {
+    }
+
+    /// How far the point at `p` moves along `n` under the move so far.
+    Real displacement(const Vec3& p, const Vec3& n) const { return n.dot(move) + (p - centre).cross(n).dot(turn); }
+
+    /// Normal displacement at `p` per unit pseudo-impulse along `n`.
+    Real compliance(const Vec3& p, const Vec3& n) const
+    {
+        const Vec3 lever = (p - centre).cross(n);
+        return invMass + lever.dot(invInertia * lever);
+    }
+
+    void apply(const Vec3& p, const Vec3& pseudoImpulse)
+    {
+        move += invMass * pseudoImpulse;
+        turn += invInertia * (p - centre).cross(pseudoImpulse);
+    }
+
+    /// How far the body's farthest point moves, to first order.
+    Real reachUsed(Real boundingRadius) const { return move.norm() + turn.norm() * boundingRadius; }
+};
+
+/// The least move in the mass metric with phi_i + (displacement of a - displacement of b) . n_i >= 0
+/// for every point (normals point from b toward a), by projected Gauss-Seidel on lambda_i >= 0.
+void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, PushedBody& b, std::vector<Real>& lambda)
 {
     lambda.assign(points.size(), 0.0);
-    Vec3 move = Vec3::Zero();
     for (int sweep = 0; sweep < kSolverSweeps; ++sweep)
     {
-        Real largestChange = 0.0;
+        Real largestChange = 0.0; // m: of any point's gap
         for (std::size_t i = 0; i < points.size(); ++i)
         {
-            const Real gap = points[i].phi + points[i].normal.dot(move);
-            const Real updated = std::max(0.0, lambda[i] - gap);
+            const ContactPoint& p = points[i];
+            const Real compliance = a.compliance(p.point, p.normal) + b.compliance(p.point, p.normal);
+            if (!(compliance > 0.0))
+            {
+                continue; // both held: nothing can move this point
+            }
+            const Real gap = p.phi + a.displacement(p.point, p.normal) - b.displacement(p.point, p.normal);
+            const Real updated = std::max(0.0, lambda[i] - gap / compliance);
             const Real change = updated - lambda[i];
             if (change != 0.0)
             {
-                move += change * points[i].normal;
+                a.apply(p.point, change * p.normal);
+                b.apply(p.point, -change * p.normal);
                 lambda[i] = updated;
-                largestChange = std::max(largestChange, std::abs(change));
+                largestChange = std::max(largestChange, std::abs(change) * compliance);
             }
         }
         if (largestChange < kSolverTolerance)
@@ -58,14 +105,28 @@ Vec3 separatingMove(const std::vector<ContactPoint>& points, std::vector<Real>& 
             break;
         }
     }
-    return move;
 }
 
-// `move` shortened to at most `reach`.
-Vec3 shortened(const Vec3& move, Real reach)
+/// Moves `body` by `scale` times its share of the push; whether it moved.
+bool movePose(RigidBody& body, const PushedBody& push, Real scale)
 {
-    const Real length = move.norm();
-    return length > reach ? Vec3(move * (std::max(reach, 0.0) / length)) : move;
+    if (push.move == Vec3::Zero() && push.turn == Vec3::Zero())
+    {
+        return false;
+    }
+    const Pose moved = advancePose(body.pose(), scale * push.move, scale * push.turn, 1.0);
+    body.position = moved.position;
+    body.orientation = moved.orientation;
+    body.rotation = moved.rotation;
+    updateDerivedQuantities(body); // the angular momentum is kept; w follows the new orientation
+    return true;
+}
+
+/// The largest fraction of the push, at most 1, that keeps the body within `reach`.
+Real withinReach(const PushedBody& push, const RigidBody& body, Real reach)
+{
+    const Real used = push.reachUsed(body.boundingRadius);
+    return used > reach ? std::max(reach, 0.0) / used : 1.0;
 }
 
 } // namespace
@@ -85,9 +146,10 @@ bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real 
     {
         return false;
     }
-    const Vec3 move = shortened(separatingMove(points, scratch.lambda), reach);
-    body.position += move;
-    return move != Vec3::Zero();
+    PushedBody push(body, false);
+    PushedBody supportsHeld(body, true);
+    separatingMove(points, push, supportsHeld, scratch.lambda);
+    return movePose(body, push, withinReach(push, body, reach));
 }
 
 bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real reachB, PushOutScratch& scratch)
@@ -99,23 +161,14 @@ bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real rea
     {
         return false;
     }
-    // the relative move a - b separates the pair; each body takes its inverse-mass share of it, and
-    // the whole move is shortened (not each share) so that the centre of mass still stays put
-    const Real shareA = a.invMass / (a.invMass + b.invMass);
-    const Real shareB = 1.0 - shareA;
-    Real reach = std::numeric_limits<Real>::infinity();
-    if (shareA > 0.0)
-    {
-        reach = std::min(reach, reachA / shareA);
-    }
-    if (shareB > 0.0)
-    {
-        reach = std::min(reach, reachB / shareB);
-    }
-    const Vec3 relative = shortened(separatingMove(points, scratch.lambda), reach);
-    a.position += shareA * relative;
-    b.position -= shareB * relative;
-    return relative != Vec3::Zero();
+    PushedBody pushA(a, !a.dynamic);
+    PushedBody pushB(b, !b.dynamic);
+    separatingMove(points, pushA, pushB, scratch.lambda);
+    // one fraction for both, so that the pair's centre of mass still stays put
+    const Real scale = std::min(withinReach(pushA, a, reachA), withinReach(pushB, b, reachB));
+    const bool movedA = movePose(a, pushA, scale);
+    const bool movedB = movePose(b, pushB, scale);
+    return movedA || movedB;
 }
 
 } // namespace impulse

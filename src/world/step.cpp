@@ -664,10 +664,16 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
     const Real stepReach = options.pushOutSpeed * options.dt;
     for (const std::uint32_t i : island.bodies)
     {
-        pushOrigins[i] = bodies[i].position;
+        pushOrigins[i] = bodies[i].pose();
     }
+    // how far the body's farthest point has been pushed so far this step, to first order
+    const auto pushedSoFar = [&](const RigidBody& body, const Pose& origin)
+    {
+        return (body.position - origin.position).norm() +
+               body.orientation.angularDistance(origin.orientation) * body.boundingRadius;
+    };
     const auto reach = [&](std::uint32_t i)
-    { return bodies[i].dynamic ? stepReach - (bodies[i].position - pushOrigins[i]).norm() : 0.0; };
+    { return bodies[i].dynamic ? stepReach - pushedSoFar(bodies[i], pushOrigins[i]) : 0.0; };
     const Real allowance = options.pushOutAllowance;
     int moves = 0;
     int sweep = 0;

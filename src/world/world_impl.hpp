@@ -93,7 +93,7 @@ class WorldImpl
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
     std::vector<Pose> probePoses;          ///< per body: predicted with the new velocity v + dt a
-    std::vector<Vec3> pushOrigins;         ///< per body: its position before push-out
+    std::vector<Pose> pushOrigins;         ///< per body: its pose before push-out
     std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
     std::vector<QuietStamp> quietPairs;    ///< parallel to pairs
     std::uint64_t pass = 0;                ///< counts the sweeping passes, so that no stamp outlives its own

@@ -3,9 +3,14 @@
 // push-out speed, by moving positions only, from the ground up.
 #include "support/penetration.hpp"
 
+#include <impulse/mesh_shapes.hpp>
 #include <impulse/world.hpp>
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
 namespace impulse
 {
@@ -161,6 +166,60 @@ TEST(PushOut, ARowOfOverlappingBallsIsPartedInTwoStepsAboutItsCentreOfMass)
         EXPECT_NEAR(moved.z(), 0.0, 1e-15);
     }
     EXPECT_EQ(world.kineticEnergy(), 0.0) << "positions only";
+}
+
+// A ring (torus, major radius R, tube radius r) tilted by alpha about x over a round peg of radius
+// rho, centred on it, without gravity: along y the hole spans R cos(alpha) - r either side of the
+// axis, less than rho, so the ring overlaps the peg at y = +rho and y = -rho by the same depth.
+// The normals there are opposite: any translation deepens one side by what it clears on the other.
+// Only turning the ring toward level clears both.
+TEST(PushOut, AWedgedRingIsTurnedFreeWhereNoTranslationCould)
+{
+    World world(WorldDef{.gravity = Vec3::Zero()});
+    const MaterialId material = world.createMaterial({.restitution = 0.3, .friction = 0.5});
+    constexpr Real kMajor = 0.1;
+    constexpr Real kMinor = 0.02;
+    constexpr Real kPegRadius = 0.075;
+    const Real tilt = std::acos((kPegRadius + kMinor - 1e-3) / kMajor); // 1 mm into either side
+    world.createBody({.type = BodyType::Static,
+                      .shape = Capsule{kPegRadius, 0.3}, // upright
+                      .material = material,
+                      .position = Vec3(0.0, 0.0, 0.3)});
+    const Mesh ring{MeshGeometry::build(torusMesh(kMajor, kMinor, 64, 24))};
+    const Vec3 centre(0.0, 0.0, 0.4);
+    const BodyId body = world.createBody({.shape = ring,
+                                          .material = material,
+                                          .density = 1000.0,
+                                          .position = centre,
+                                          .orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitX()))});
+    // the two sides hold the ring about equally deep, so no translation clears the sum of the two
+    std::vector<ContactPoint> points;
+    collideShapes(ring, Pose::from(centre, world.state(body).orientation), world.shape({0}),
+                  Pose::from(Vec3(0.0, 0.0, 0.3), Quat::Identity()), 0.0, points);
+    Real deepestTowardPlusY = 0.0;
+    Real deepestTowardMinusY = 0.0;
+    for (const ContactPoint& point : points)
+    {
+        Real& deepest = point.normal.y() > 0.0 ? deepestTowardPlusY : deepestTowardMinusY;
+        deepest = std::max(deepest, -point.phi);
+    }
+    ASSERT_GT(deepestTowardPlusY, 0.5e-3);
+    ASSERT_GT(deepestTowardMinusY, 0.5e-3);
+
+    const StepOptions options = millisecondSteps();
+    for (int step = 0; step < 10; ++step)
+    {
+        world.step(options);
+    }
+    const BodyState state = world.state(body);
+    EXPECT_LT(test::deepestPenetration(world).depth, options.pushOutAllowance);
+    // leveller by at least what clearing 1 mm per side takes: d(R cos a)/da = -R sin a
+    const Real turned = tilt - state.orientation.angularDistance(Quat::Identity());
+    EXPECT_GT(turned, 0.5 * 1e-3 / (kMajor * std::sin(tilt)));
+    EXPECT_LT(turned, 4.0 * 1e-3 / (kMajor * std::sin(tilt)));
+    EXPECT_LT((state.position - centre).norm(), 1e-3) << "turned about where it was, not thrown aside";
+    EXPECT_EQ(state.linearVelocity, Vec3::Zero()) << "positions only";
+    EXPECT_EQ(state.angularMomentum, Vec3::Zero());
 }
 
 TEST(PushOut, ASunkOverlappingStackIsPushedOutFromTheGroundUpWithoutBeingLaunched)
