@@ -195,17 +195,23 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
     return true;
 }
 
-constexpr std::size_t kMaxPatchPoints = 8;
+// The most points resolved together as one patch. A box on two boxes gives up to eight points on
+// each once it has turned a little about the vertical (the clipped faces are then octagons, not
+// rectangles); resolved one pair at a time instead, such a box keeps a twist and slip that no
+// single pair's impulse removes, and a pyramid of cubes never comes to rest.
+constexpr std::size_t kMaxPatchPoints = 16;
+// What a mesh's patch is thinned to (reducePatch).
+constexpr std::size_t kMeshPatchPoints = 8;
 
-// Keeps at most kMaxPatchPoints points of a large patch of a mesh (lying on a face, a mesh touches
+// Keeps at most kMeshPatchPoints points of a large patch of a mesh (lying on a face, a mesh touches
 // at many vertices): the deepest, then each time the point farthest from those kept. The kept points
 // span the contact region, and a rigid motion that does not approach at the corners of a region does
 // not approach inside it. Patches of analytic shapes are left whole: a pair of them gives at most
-// eight points, and a body on several such supports falls back to its pairs as before.
+// eight points and a body on two such supports at most sixteen; a larger patch falls back to its pairs.
 void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
 {
     const auto isMesh = [](const RigidBody& b) { return std::holds_alternative<Mesh>(b.shape); };
-    if (patch.size() <= kMaxPatchPoints ||
+    if (patch.size() <= kMeshPatchPoints ||
         !(isMesh(body) ||
           std::any_of(patch.begin(), patch.end(), [&](const PatchPoint& p) { return isMesh(*p.other); })))
     {
@@ -224,7 +230,7 @@ void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
     {
         gap[k] = (patch[k].contact.point - patch[deepest].contact.point).squaredNorm();
     }
-    while (kept.size() < kMaxPatchPoints)
+    while (kept.size() < kMeshPatchPoints)
     {
         const auto farthest = static_cast<std::size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
         if (!(gap[farthest] > 0.0))

@@ -1,61 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Stacking: the contact graph and shock propagation (reference scene 9 and the stacking
-// regressions). These runs are long, so they live in impulse_long_tests (ctest label "long").
-#include "support/scene_run.hpp"
+// regressions). These runs are long, so they live in impulse_long_tests (ctest label "long"); scene
+// 10's ten seconds are longer still and run with the piles (pyramid_test.cpp).
+#include "support/stack_run.hpp"
 
 #include <gtest/gtest.h>
-
-#include <algorithm>
-#include <vector>
 
 namespace impulse::test
 {
 namespace
 {
-
-struct StackRecord
-{
-    Real topDisplacement = 0.0;      ///< largest distance of the last body from its start
-    Real largestDrift = 0.0;         ///< largest distance of any body from where it was at settleTime
-    Real fastestAfterSettling = 0.0; ///< largest speed of any body after settleTime
-    Real fastestAtEnd = 0.0;
-};
-
-StackRecord runStack(io::Scene& scene, Real dt, Real settleTime, Real duration = -1.0)
-{
-    StackRecord record;
-    const BodyId top = scene.dynamicBodies.back();
-    const Vec3 topStart = scene.world.state(top).position;
-    std::vector<Vec3> settled;
-    runScene(
-        scene, dt,
-        [&](Real t, const World& world)
-        {
-            record.topDisplacement = std::max(record.topDisplacement, (world.state(top).position - topStart).norm());
-            if (t + 0.5 * scene.options.dt < settleTime)
-            {
-                return;
-            }
-            if (settled.empty())
-            {
-                for (const BodyId id : scene.dynamicBodies)
-                {
-                    settled.push_back(world.state(id).position);
-                }
-            }
-            Real fastest = 0.0;
-            for (std::size_t k = 0; k < scene.dynamicBodies.size(); ++k)
-            {
-                const BodyState s = world.state(scene.dynamicBodies[k]);
-                record.largestDrift = std::max(record.largestDrift, (s.position - settled[k]).norm());
-                fastest = std::max(fastest, std::max(s.linearVelocity.norm(), s.angularVelocity.norm() * 0.2));
-            }
-            record.fastestAfterSettling = std::max(record.fastestAfterSettling, fastest);
-            record.fastestAtEnd = fastest;
-        },
-        duration);
-    return record;
-}
 
 TEST(ReferenceScene9, StackOfTenCubesStandsStillForTwentySeconds)
 {
@@ -82,14 +36,43 @@ TEST(ReferenceScene9, StackOfFiftyCubesStandsAtTenMillisecondSteps)
     EXPECT_LT(record.fastestAfterSettling, 1e-4);
 }
 
-TEST(ReferenceScene10, PyramidOfTwoHundredTenCubesStands)
+// A pyramid of cubes built as scene 10 is (side 0.2, gaps of 0.01 within a row, each cube on two,
+// mu = 0.5, e = 0), of `rows` rows, with every cube's x moved by +-shift (signs from `seed`).
+io::Scene cubePyramid(int rows, Real shift, unsigned seed)
 {
-    // bottom row of 20 with gaps of 0.01: every cube above the first row rests on two, and the
-    // whole pyramid must stay within 5 mm of where it settled at 1 s
-    io::Scene scene = loadReferenceScene("pyramid");
-    ASSERT_EQ(scene.dynamicBodies.size(), 210u);
-    const StackRecord record = runStack(scene, 1e-3, 1.0);
-    EXPECT_LT(record.largestDrift, 5e-3);
+    io::Scene scene;
+    scene.duration = 0.5;
+    const MaterialId material = scene.world.createMaterial({.restitution = 0.0, .friction = 0.5});
+    scene.world.createBody({.type = BodyType::Static, .shape = Plane{}, .material = material});
+    for (int row = 0; row < rows; ++row)
+    {
+        for (int column = 0; column < rows - row; ++column)
+        {
+            seed = seed * 1103515245u + 12345u;
+            const Real nudge = ((seed >> 16) & 1u) != 0u ? shift : -shift;
+            const Vec3 position(-0.105 * (rows - 1) + 0.21 * column + 0.105 * row + nudge, 0.0, 0.1 + 0.2 * row);
+            scene.dynamicBodies.push_back(scene.world.createBody(
+                {.shape = Box{Vec3::Constant(0.1)}, .material = material, .mass = 1.0, .position = position}));
+        }
+    }
+    return scene;
+}
+
+TEST(Stacking, PyramidsOfCubesComeToRestWhateverTheRoundOffOfTheirStart)
+{
+    // Every cube rests on two with friction to spare, so nothing should move once the contacts have
+    // taken the weight. A cube that turns a little about the vertical touches each support at up to
+    // eight points; resolved pair by pair rather than as one patch, it kept a twist and slip, and
+    // pyramids of twelve rows and more never came to rest (speeds of mm/s to cm/s, and drifts of
+    // millimetres that depended on shifts of the start by 1e-9 m).
+    for (const unsigned seed : {0u, 2u})
+    {
+        io::Scene scene = cubePyramid(12, seed == 0u ? 0.0 : 1e-9, seed);
+        const StackRecord record = runStack(scene, 1e-3, 0.2);
+        // at rest: below 1e-4 of the speed gravity adds in one step, g dt = 9.8 mm/s
+        EXPECT_LT(record.fastestAfterSettling, 1e-6) << "seed " << seed;
+        EXPECT_LT(record.largestDrift, 1e-6) << "seed " << seed; // no cube moves by a micrometre
+    }
 }
 
 TEST(ShockPropagation, WithoutItTheStackOfFiftyFallsWithinTwoSeconds)
