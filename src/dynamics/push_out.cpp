@@ -2,8 +2,8 @@
 // Push-out: the position correction that runs after the position update (PhysBAM's addition to
 // GBF03, guendelman.md sec. 9). The passes before it only remove approaching velocity, so an
 // overlap made when the collision pass hit its sweep cap on a dense impact would otherwise stay for
-// as long as the bodies rest on each other. Push-out changes positions only: velocities, and so the
-// kinetic energy the passes settled, are left as they are.
+// as long as the bodies rest on each other. Push-out changes poses only: velocities and angular
+// momenta, and so the kinetic energy the passes settled, are left as they are.
 //
 // A push moves a body as a whole, translation and rotation, by the least change of pose that brings
 // every point to phi >= 0 (to first order), measured in the body's mass metric: the displacement
@@ -31,7 +31,7 @@ namespace
 {
 
 constexpr int kSolverSweeps = 16;
-constexpr Real kSolverTolerance = 1e-9; // m: a sweep that changes no lambda by more has converged
+constexpr Real kSolverTolerance = 1e-9; // m: a sweep that moves no point's gap by more has converged
 
 bool deeperThan(const std::vector<ContactPoint>& points, Real allowance)
 {
