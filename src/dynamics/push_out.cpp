@@ -23,7 +23,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace impulse
 {
@@ -38,7 +37,8 @@ bool deeperThan(const std::vector<ContactPoint>& points, Real allowance)
     return std::any_of(points.begin(), points.end(), [&](const ContactPoint& p) { return p.phi < -allowance; });
 }
 
-/// A body's part in a push: how a pseudo-impulse moves it, and the move so far.
+/// A body's part in a push: how a pseudo-impulse moves it, and the move so far. Default-constructed,
+/// or built from a static body (zero inverse mass and inertia), it is held: nothing moves it.
 struct PushedBody
 {
     Vec3 centre = Vec3::Zero();
@@ -47,9 +47,9 @@ struct PushedBody
     Vec3 move = Vec3::Zero();       ///< translation
     Vec3 turn = Vec3::Zero();       ///< rotation vector
 
-    explicit PushedBody(const RigidBody& body, bool held)
-        : centre(body.position), invMass(held ? 0.0 : body.invMass),
-          invInertia(held ? Mat3::Zero() : body.invInertiaWorld)
+    PushedBody() = default;
+    explicit PushedBody(const RigidBody& body)
+        : centre(body.position), invMass(body.invMass), invInertia(body.invInertiaWorld)
     {
     }
 
@@ -146,9 +146,9 @@ bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real 
     {
         return false;
     }
-    PushedBody push(body, false);
-    PushedBody supportsHeld(body, true);
-    separatingMove(points, push, supportsHeld, scratch.lambda);
+    PushedBody push(body);
+    PushedBody held; // the supports stay put
+    separatingMove(points, push, held, scratch.lambda);
     return movePose(body, push, withinReach(push, body, reach));
 }
 
@@ -161,8 +161,8 @@ bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real rea
     {
         return false;
     }
-    PushedBody pushA(a, !a.dynamic);
-    PushedBody pushB(b, !b.dynamic);
+    PushedBody pushA(a);
+    PushedBody pushB(b);
     separatingMove(points, pushA, pushB, scratch.lambda);
     // one fraction for both, so that the pair's centre of mass still stays put
     const Real scale = std::min(withinReach(pushA, a, reachA), withinReach(pushB, b, reachB));
