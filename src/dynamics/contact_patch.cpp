@@ -20,9 +20,11 @@
 #include "dynamics/impulse.hpp"
 #include "dynamics/integrate.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -214,6 +216,155 @@ void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoi
     result.reached = a * image;
 }
 
+// j = W^-1 t by a Cholesky factor of W itself, for a patch whose every point has a movable partner
+// of its own (a ball on the balls below it). Such a partner's block of W is at least its 1/m times
+// the identity on the diagonal and the body's coupling adds a positive semi-definite part, so W is
+// positive definite and W^-1 t is the least-norm solution the decomposition of A would give with
+// all of A's rank kept, from a 3n x 3n factor instead of one of a 3n x 6(n + 1) matrix.
+void solveThroughCoupling(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
+                          const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
+                          PatchLeastSquares& result)
+{
+    using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 48, 48>;
+    thread_local Matrix coupling;
+    thread_local Eigen::LLT<Matrix> factor;
+    const auto n = static_cast<Eigen::Index>(patch.size());
+    coupling.resize(3 * n, 3 * n);
+    const Real bodyInvMass = invMassOf(body);
+    const Mat3 bodyInvInertia = invInertiaOf(body);
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+        const auto pi = static_cast<std::size_t>(i);
+        const RigidBody& partner = *patch[pi].other;
+        coupling.block<3, 3>(3 * i, 3 * i) =
+            couplingMatrix(bodyInvMass, bodyInvInertia, lever[pi], lever[pi]) +
+            couplingMatrix(partner.invMass, partner.invInertiaWorld, partnerLever[pi], partnerLever[pi]);
+        for (Eigen::Index k = i + 1; k < n; ++k)
+        {
+            const Mat3 block =
+                couplingMatrix(bodyInvMass, bodyInvInertia, lever[pi], lever[static_cast<std::size_t>(k)]);
+            coupling.block<3, 3>(3 * i, 3 * k) = block;
+            coupling.block<3, 3>(3 * k, 3 * i) = block.transpose();
+        }
+    }
+    factor.compute(coupling);
+    result.impulses = factor.solve(target);
+    result.reached = coupling * result.impulses;
+}
+
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// The cross-product matrix [r]x, [r]x v = r x v.
+Mat3 crossMatrix(const Vec3& r)
+{
+    Mat3 m;
+    m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+    return m;
+}
+
+// Adds body b's mobility to K, the 6 x 6 map from a wrench about `centre` (force, moment) to the
+// twist it gives about `centre`: S^T M_b^-1 S, S moving the wrench to b's centre of mass.
+void addMobility(const RigidBody& b, const Vec3& centre, Mat6& mobility)
+{
+    const Mat3 shift = crossMatrix(centre - b.predicted.position); // moment about b = moment about centre + shift F
+    const Mat3& invInertia = b.invInertiaWorld;
+    mobility.topLeftCorner<3, 3>() += b.invMass * Mat3::Identity() + shift.transpose() * invInertia * shift;
+    mobility.topRightCorner<3, 3>() += shift.transpose() * invInertia;
+    mobility.bottomLeftCorner<3, 3>() += invInertia * shift;
+    mobility.bottomRightCorner<3, 3>() += invInertia;
+}
+
+// j = W^+ t for a patch whose points all touch static or frozen bodies or one and the same movable
+// partner (a box on the ground, a cube on a cube, any body in the shock sweep). The relative velocity
+// the impulses give is then a rigid motion: a twist (V, W) about the points' centroid c gives
+// u_k = V + W x rho_k, rho_k = p_k - c, that is u = J (V, W), and the impulses act through their
+// wrench J^T j about c, the twist being K J^T j with K the pair's 6 x 6 mobility. So W = J K J^T and,
+// J having full column rank, W^+ = J (J^T J)^-1 K^-1 (J^T J)^-1 J^T: the rigid motion of least
+// squares J^+ t, the wrench that gives it, spread over the points with the least norm. About the
+// centroid J^T J = diag(n 1, G), G = sum |rho|^2 1 - rho rho^T, so the whole solve is of 6 x 6 and
+// 3 x 3 matrices, where the decomposition of A works on 3n x 12. Returns false, computing nothing,
+// when the points lie nearly on a line (G nearly singular: an edge contact), which the decomposition
+// handles with its rank decisions.
+bool solveThroughTwist(const RigidBody& body, const std::vector<PatchPoint>& patch, const RigidBody* partner,
+                       const Eigen::VectorXd& target, PatchLeastSquares& result)
+{
+    const std::size_t n = patch.size();
+    if (n < 3)
+    {
+        return false;
+    }
+    Vec3 centre = Vec3::Zero();
+    for (const PatchPoint& point : patch)
+    {
+        centre += point.contact.point;
+    }
+    centre /= static_cast<Real>(n);
+    Mat3 spread = Mat3::Zero();
+    for (const PatchPoint& point : patch)
+    {
+        const Vec3 rho = point.contact.point - centre;
+        spread += rho.squaredNorm() * Mat3::Identity() - rho * rho.transpose();
+    }
+    // well away from a line: the least eigenvalue of G above 1e-6 of its trace (G's eigenvalues
+    // are at most its trace, and the least is at least det / (trace / 2)^2 for a PSD 3 x 3)
+    const Real trace = spread.trace();
+    if (!(trace > 0.0) || !(spread.determinant() > 0.25e-6 * trace * trace * trace))
+    {
+        return false;
+    }
+    const Eigen::LLT<Mat3> spreadFactor(spread);
+    Mat6 mobility = Mat6::Zero();
+    if (!body.immovable())
+    {
+        addMobility(body, centre, mobility);
+    }
+    if (partner != nullptr)
+    {
+        addMobility(*partner, centre, mobility);
+    }
+    const Eigen::LLT<Mat6> mobilityFactor(mobility);
+    if (mobilityFactor.info() != Eigen::Success || spreadFactor.info() != Eigen::Success)
+    {
+        return false;
+    }
+    const auto count = static_cast<Real>(n);
+    // (J^T J)^-1 of a wrench or twist about the centroid
+    const auto unspread = [&](const Vec6& x)
+    {
+        Vec6 y;
+        y.head<3>() = x.head<3>() / count;
+        y.tail<3>() = spreadFactor.solve(x.tail<3>());
+        return y;
+    };
+    Vec6 wrench = Vec6::Zero(); // J^T t
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        const Vec3 tk = target.segment<3>(3 * static_cast<Eigen::Index>(k));
+        wrench.head<3>() += tk;
+        wrench.tail<3>() += (patch[k].contact.point - centre).cross(tk);
+    }
+    const Vec6 spreadTwist = unspread(mobilityFactor.solve(unspread(wrench)));
+    result.impulses.resize(static_cast<Eigen::Index>(3 * n));
+    Vec6 applied = Vec6::Zero(); // J^T j
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        const Vec3 rho = patch[k].contact.point - centre;
+        const Vec3 jk = spreadTwist.head<3>() + spreadTwist.tail<3>().cross(rho);
+        result.impulses.segment<3>(3 * static_cast<Eigen::Index>(k)) = jk;
+        applied.head<3>() += jk;
+        applied.tail<3>() += rho.cross(jk);
+    }
+    const Vec6 twist = mobility * applied;
+    result.reached.resize(static_cast<Eigen::Index>(3 * n));
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        result.reached.segment<3>(3 * static_cast<Eigen::Index>(k)) =
+            twist.head<3>() + twist.tail<3>().cross(patch[k].contact.point - centre);
+    }
+    return true;
+}
+
 void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
                             const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
                             PatchLeastSquares& result)
@@ -231,6 +382,20 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
         {
             movable.push_back(point.other);
         }
+    }
+    const std::size_t partners = movable.size() - (body.immovable() ? 0 : 1);
+    if (partners <= 1 && !movable.empty() &&
+        solveThroughTwist(body, patch, partners == 1 ? movable.back() : nullptr, target, result))
+    {
+        return;
+    }
+    const bool partnerPerPoint =
+        movable.size() == patch.size() + (body.immovable() ? 0 : 1) &&
+        std::none_of(patch.begin(), patch.end(), [](const PatchPoint& point) { return point.other->immovable(); });
+    if (partnerPerPoint && patch.size() <= 16)
+    {
+        solveThroughCoupling(body, patch, lever, partnerLever, target, result);
+        return;
     }
     // Patches of the usual sizes fit storage of fixed size, which spares the heap traffic of dynamic
     // matrices: a box on the ground or on one other box (up to 8 points, 12 columns), a ball among a
@@ -403,8 +568,17 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         Real normalMass = 0.0;
         Real tangentMass1 = 0.0;
         Real tangentMass2 = 0.0;
+        // the rows of the velocity Jacobian along n, t1 and t2 for each side (r x d), and what a
+        // unit impulse along them does to its angular velocity (I^-1 (r x d)), worked out once so
+        // that an iteration costs dot products and additions
+        std::array<Vec3, 3> bodyArm;
+        std::array<Vec3, 3> partnerArm;
+        std::array<Vec3, 3> bodyTurn;
+        std::array<Vec3, 3> partnerTurn;
         Real load = 0.0;
-        Vec3 friction = Vec3::Zero();
+        Real friction1 = 0.0; // friction along tangent1
+        Real friction2 = 0.0; // and along tangent2
+        Vec3 impulse() const { return load * normal + friction1 * tangent1 + friction2 * tangent2; }
     };
     const std::size_t n = patch.size();
     thread_local std::vector<Row> rows;
@@ -450,6 +624,14 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         row.normalMass = 1.0 / row.normal.dot(K * row.normal);
         row.tangentMass1 = 1.0 / row.tangent1.dot(K * row.tangent1);
         row.tangentMass2 = 1.0 / row.tangent2.dot(K * row.tangent2);
+        const std::array<Vec3, 3> directions{row.normal, row.tangent1, row.tangent2};
+        for (std::size_t d = 0; d < 3; ++d)
+        {
+            row.bodyArm[d] = row.lever.cross(directions[d]);
+            row.partnerArm[d] = row.partnerLever.cross(directions[d]);
+            row.bodyTurn[d] = motions[0].invInertia * row.bodyArm[d];
+            row.partnerTurn[d] = partner.invInertia * row.partnerArm[d];
+        }
     }
     targetNormalVelocities(approach, eps, keep);
     for (std::size_t k = 0; k < n; ++k)
@@ -488,7 +670,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         Real scale = 0.0;
         for (std::size_t k = 0; k < n; ++k)
         {
-            const Vec3 j = rows[k].load * rows[k].normal + rows[k].friction;
+            const Vec3 j = rows[k].impulse();
             const Vec3 now = rawRelative(rows[k]);
             work += 0.5 * j.dot(initial[k] + now);
             scale += 0.5 * j.norm() * (initial[k].norm() + now.norm());
@@ -502,7 +684,8 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         for (Row& row : rows)
         {
             row.load = 0.0;
-            row.friction = Vec3::Zero();
+            row.friction1 = 0.0;
+            row.friction2 = 0.0;
         }
     };
 
@@ -525,13 +708,16 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
                 Row& row = rows[k];
                 const Vec3 j = start.segment<3>(3 * static_cast<Eigen::Index>(k));
                 row.load = std::max(0.0, j.dot(row.normal));
-                row.friction = j - j.dot(row.normal) * row.normal;
+                row.friction1 = j.dot(row.tangent1);
+                row.friction2 = j.dot(row.tangent2);
                 const Real limit = patch[k].friction * row.load;
-                if (row.friction.norm() > limit)
+                const Real size = std::sqrt(row.friction1 * row.friction1 + row.friction2 * row.friction2);
+                if (size > limit)
                 {
-                    row.friction *= limit / row.friction.norm();
+                    row.friction1 *= limit / size;
+                    row.friction2 *= limit / size;
                 }
-                push(row, row.load * row.normal + row.friction);
+                push(row, row.impulse());
             }
         }
     }
@@ -544,23 +730,42 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
             for (std::size_t k = 0; k < n; ++k)
             {
                 Row& row = rows[k];
-                const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - relative(row).dot(row.normal)));
-                push(row, (load - row.load) * row.normal);
-                change = std::max(change, std::abs(load - row.load));
+                Motion& a = motions[0];
+                Motion& b = motions[row.partner];
+                // relative velocity along direction d of the row: the Jacobian row times the motions
+                const auto along = [&](std::size_t d, const Vec3& direction)
+                { return direction.dot(a.v - b.v) + row.bodyArm[d].dot(a.w) - row.partnerArm[d].dot(b.w); };
+
+                const Real un = along(0, row.normal) + row.correction;
+                const Real load = std::max(0.0, row.load + row.normalMass * (row.keep - un));
+                const Real added = load - row.load;
+                a.v += (a.invMass * added) * row.normal;
+                a.w += added * row.bodyTurn[0];
+                b.v -= (b.invMass * added) * row.normal;
+                b.w -= added * row.partnerTurn[0];
+                change = std::max(change, std::abs(added));
                 largest = std::max(largest, load);
                 row.load = load;
 
-                const Vec3 u = relative(row);
-                Vec3 friction = row.friction - row.tangentMass1 * u.dot(row.tangent1) * row.tangent1 -
-                                row.tangentMass2 * u.dot(row.tangent2) * row.tangent2;
+                Real friction1 = row.friction1 - row.tangentMass1 * along(1, row.tangent1);
+                Real friction2 = row.friction2 - row.tangentMass2 * along(2, row.tangent2);
                 const Real limit = patch[k].friction * row.load;
-                if (friction.norm() > limit)
+                const Real size = std::sqrt(friction1 * friction1 + friction2 * friction2);
+                if (size > limit)
                 {
-                    friction *= limit / friction.norm();
+                    friction1 *= limit / size;
+                    friction2 *= limit / size;
                 }
-                push(row, friction - row.friction);
-                change = std::max(change, (friction - row.friction).norm());
-                row.friction = friction;
+                const Real added1 = friction1 - row.friction1;
+                const Real added2 = friction2 - row.friction2;
+                const Vec3 addedImpulse = added1 * row.tangent1 + added2 * row.tangent2;
+                a.v += a.invMass * addedImpulse;
+                a.w += added1 * row.bodyTurn[1] + added2 * row.bodyTurn[2];
+                b.v -= b.invMass * addedImpulse;
+                b.w -= added1 * row.partnerTurn[1] + added2 * row.partnerTurn[2];
+                change = std::max(change, std::sqrt(added1 * added1 + added2 * added2));
+                row.friction1 = friction1;
+                row.friction2 = friction2;
             }
             if (!(change > 1e-9 * largest))
             {
@@ -596,7 +801,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     bool applied = false;
     for (std::size_t k = 0; k < n; ++k)
     {
-        impulses[k] = rows[k].load * rows[k].normal + rows[k].friction;
+        impulses[k] = rows[k].impulse();
         applied = applied || !impulses[k].isZero(0.0);
     }
     applyToPatch(body, patch, impulses, levers, partnerLevers);

@@ -3,7 +3,7 @@
 // keep sequential impulses from adding relative kinetic energy (GBF03 sec. 6; report eq. 5-8).
 #include "dynamics/impulse.hpp"
 
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
 
 #include <cmath>
 
@@ -38,8 +38,9 @@ Vec3 computeImpulse(const Vec3& uRel, const Vec3& n, const Mat3& K, Real eps, Re
     {
         return Vec3::Zero();
     }
-    Eigen::FullPivLU<Mat3> lu(K);
-    if (!lu.isInvertible())
+    // K is symmetric, and positive definite unless both bodies are immovable
+    const Eigen::LLT<Mat3> factor(K);
+    if (factor.info() != Eigen::Success)
     {
         return Vec3::Zero();
     }
@@ -47,7 +48,7 @@ Vec3 computeImpulse(const Vec3& uRel, const Vec3& n, const Mat3& K, Real eps, Re
 
     // static friction: stop the slip and set the normal velocity to -eps u_n
     const Vec3 deltaU = -(1.0 + eps) * un * n - ut;
-    const Vec3 sticking = lu.solve(deltaU);
+    const Vec3 sticking = factor.solve(deltaU);
     const Real stickingNormal = sticking.dot(n);
     const Real stickingTangent = (sticking - stickingNormal * n).norm();
     const bool insideCone = stickingNormal > 0.0 && stickingTangent <= mu * stickingNormal;
