@@ -18,19 +18,6 @@ struct OrientedBox
     Vec3 half;
 };
 
-// Half the box's extent projected on a unit axis.
-Real projectedRadius(const OrientedBox& box, const Vec3& axis)
-{
-    return box.half.x() * std::abs(box.axes.col(0).dot(axis)) + box.half.y() * std::abs(box.axes.col(1).dot(axis)) +
-           box.half.z() * std::abs(box.axes.col(2).dot(axis));
-}
-
-// Separation of the boxes along a unit axis: positive apart, negative overlapping.
-Real separation(const OrientedBox& a, const OrientedBox& b, const Vec3& axis)
-{
-    return std::abs((b.centre - a.centre).dot(axis)) - projectedRadius(a, axis) - projectedRadius(b, axis);
-}
-
 // A convex polygon in fixed storage (the clip runs at every re-detection): a box face has four
 // corners and each of the four clips to the reference face's sides adds at most one. Round-off can
 // make a nearly degenerate polygon cross a plane more than twice; corners beyond the storage are
@@ -177,22 +164,37 @@ void collideBoxBox(const Box& boxA, const Pose& poseA, const Box& boxB, const Po
     const Vec3 between = a.centre - b.centre; // from B toward A
     const Real scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
 
+    // Every separation below is |d . L| - r_A(L) - r_B(L) for a candidate axis L, r the box's half
+    // extent along it, written with the axes of B in A's frame, C_ij = a_i . b_j, and the centres'
+    // offset in either frame, so that the 15 axes cost one 3 x 3 product instead of 15 x 7 dot
+    // products
+    const Mat3 c = a.axes.transpose() * b.axes;
+    const Mat3 absC = c.cwiseAbs();
+    const Vec3 offsetA = a.axes.transpose() * (b.centre - a.centre);
+    const Vec3 offsetB = b.axes.transpose() * (b.centre - a.centre);
+
     // face axes: least penetration (largest separation) wins; A's faces win ties so the choice
     // does not flicker between equal faces from one step to the next
     Real bestFace = -std::numeric_limits<Real>::infinity();
     int faceAxis = -1;
     bool faceOfA = true;
-    for (const bool ofA : {true, false})
+    for (int k = 0; k < 3; ++k)
     {
-        for (int k = 0; k < 3; ++k)
+        const Real s = std::abs(offsetA[k]) - a.half[k] - absC.row(k).dot(b.half);
+        if (s > bestFace + 1e-9 * scale)
         {
-            const Real s = separation(a, b, (ofA ? a : b).axes.col(k));
-            if (s > bestFace + 1e-9 * scale)
-            {
-                bestFace = s;
-                faceAxis = k;
-                faceOfA = ofA;
-            }
+            bestFace = s;
+            faceAxis = k;
+        }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+        const Real s = std::abs(offsetB[k]) - absC.col(k).dot(a.half) - b.half[k];
+        if (s > bestFace + 1e-9 * scale)
+        {
+            bestFace = s;
+            faceAxis = k;
+            faceOfA = false;
         }
     }
     if (bestFace >= threshold)
@@ -200,23 +202,28 @@ void collideBoxBox(const Box& boxA, const Pose& poseA, const Box& boxB, const Po
         return;
     }
 
-    // edge axes: only when clearly better than every face, since a face gives a whole patch
+    // edge axes a_i x b_j: only when clearly better than every face, since a face gives a whole patch
     Real bestEdge = -std::numeric_limits<Real>::infinity();
     int edgeA = -1;
     int edgeB = -1;
-    Vec3 edgeNormal = Vec3::Zero();
     for (int i = 0; i < 3; ++i)
     {
+        const int i1 = (i + 1) % 3;
+        const int i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j)
         {
-            Vec3 axis = a.axes.col(i).cross(b.axes.col(j));
-            const Real length = axis.norm();
+            // |a_i x b_j|, from the components of b_j across a_i (no cancellation when nearly parallel)
+            const Real length = std::sqrt(c(i1, j) * c(i1, j) + c(i2, j) * c(i2, j));
             if (length < 1e-6)
             {
                 continue; // parallel edges: the face axes cover them
             }
-            axis /= length;
-            const Real s = separation(a, b, axis);
+            const int j1 = (j + 1) % 3;
+            const int j2 = (j + 2) % 3;
+            const Real distance = std::abs(offsetA[i2] * c(i1, j) - offsetA[i1] * c(i2, j));
+            const Real radiusA = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
+            const Real radiusB = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
+            const Real s = (distance - radiusA - radiusB) / length;
             if (s >= threshold)
             {
                 return; // a separating axis: no contact
@@ -226,12 +233,13 @@ void collideBoxBox(const Box& boxA, const Pose& poseA, const Box& boxB, const Po
                 bestEdge = s;
                 edgeA = i;
                 edgeB = j;
-                edgeNormal = axis.dot(between) >= 0.0 ? axis : Vec3(-axis);
             }
         }
     }
     if (edgeA >= 0 && bestEdge > bestFace + 1e-6 * scale)
     {
+        const Vec3 axis = a.axes.col(edgeA).cross(b.axes.col(edgeB)).normalized();
+        const Vec3 edgeNormal = axis.dot(between) >= 0.0 ? axis : Vec3(-axis);
         edgeContact(a, edgeA, b, edgeB, edgeNormal, bestEdge, out);
         return;
     }
