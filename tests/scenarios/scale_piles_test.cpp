@@ -11,22 +11,22 @@ namespace
 
 TEST(ReferenceScene11, ThousandSpheresStayInTheBoxWithoutOverlaps)
 {
-    expectPileStaysInTheBoxWithoutOverlaps("sphere_pile_1000", 0.1);
+    expectPileOracleHolds("sphere_pile_1000", PileOracleKind::StaysInTheBox, 0.1);
 }
 
 TEST(ReferenceScene12, ThousandCubesStayInTheBoxWithoutOverlaps)
 {
-    expectPileStaysInTheBoxWithoutOverlaps("box_pile_1000", 0.1);
+    expectPileOracleHolds("box_pile_1000", PileOracleKind::StaysInTheBox, 0.1);
 }
 
 TEST(ReferenceScene11, TenThousandSpheresStayInTheBoxWithoutOverlaps)
 {
-    expectPileStaysInTheBoxWithoutOverlaps("sphere_pile_10000", 0.1);
+    expectPileOracleHolds("sphere_pile_10000", PileOracleKind::StaysInTheBox, 0.1);
 }
 
 TEST(ReferenceScene12, TenThousandCubesStayInTheBoxWithoutOverlaps)
 {
-    expectPileStaysInTheBoxWithoutOverlaps("box_pile_10000", 0.1);
+    expectPileOracleHolds("box_pile_10000", PileOracleKind::StaysInTheBox, 0.1);
 }
 
 } // namespace
