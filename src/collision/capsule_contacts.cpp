@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "collision/capsule_contacts.hpp"
 
-#include "collision/mesh_contacts.hpp"
 #include "geometry/signed_distance.hpp"
 
 #include <algorithm>
@@ -178,64 +177,6 @@ void collideCapsuleCapsule(const Capsule& a, const Pose& poseA, const Capsule& b
         s = std::clamp((ab - c) / aa, 0.0, 1.0);
     }
     sphereContact(sa.at(s), a.radius, sb.at(t), b.radius, threshold, out);
-}
-
-namespace
-{
-
-// Capsule A against any shape B; false when B has no row for capsules.
-bool capsuleAgainst(const Capsule& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
-                    std::vector<ContactPoint>& out)
-{
-    if (const auto* sphere = std::get_if<Sphere>(&b))
-    {
-        collideCapsuleSphere(a, poseA, *sphere, poseB, threshold, out);
-        return true;
-    }
-    if (const auto* box = std::get_if<Box>(&b))
-    {
-        collideCapsuleBox(a, poseA, *box, poseB, threshold, out);
-        return true;
-    }
-    if (const auto* plane = std::get_if<Plane>(&b))
-    {
-        collideCapsulePlane(a, poseA, *plane, poseB, threshold, out);
-        return true;
-    }
-    if (const auto* capsule = std::get_if<Capsule>(&b))
-    {
-        collideCapsuleCapsule(a, poseA, *capsule, poseB, threshold, out);
-        return true;
-    }
-    if (const auto* mesh = std::get_if<Mesh>(&b))
-    {
-        collideCapsuleMesh(a, poseA, *mesh, poseB, threshold, out);
-        return true;
-    }
-    return false;
-}
-
-} // namespace
-
-bool collideCapsulePair(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
-                        std::vector<ContactPoint>& out)
-{
-    if (const auto* capsule = std::get_if<Capsule>(&a))
-    {
-        return capsuleAgainst(*capsule, poseA, b, poseB, threshold, out);
-    }
-    if (const auto* capsule = std::get_if<Capsule>(&b))
-    {
-        // the points of (b, a), with their normals turned to run from B toward A
-        const std::size_t first = out.size();
-        const bool handled = capsuleAgainst(*capsule, poseB, a, poseA, threshold, out);
-        for (std::size_t i = first; i < out.size(); ++i)
-        {
-            out[i].normal = -out[i].normal;
-        }
-        return handled;
-    }
-    return false;
 }
 
 } // namespace impulse

@@ -33,9 +33,4 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
 void collideCapsuleCapsule(const Capsule& a, const Pose& poseA, const Capsule& b, const Pose& poseB, Real threshold,
                            std::vector<ContactPoint>& out);
 
-/// The capsule rows of the table: if either shape is a capsule, appends the pair's points (normal
-/// from B toward A, whichever order the capsule comes in) and returns true; otherwise returns false.
-bool collideCapsulePair(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
-                        std::vector<ContactPoint>& out);
-
 } // namespace impulse

@@ -21,6 +21,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 namespace impulse
 {
@@ -102,99 +104,98 @@ void boxPlane(const Box& a, const Pose& poseA, const Plane& b, const Pose& poseB
     }
 }
 
-// Runs `collide(b, a)` and re-expresses its points for the pair (a, b).
-template <class Collide> void swapped(Collide collide, std::vector<ContactPoint>& out)
+// The rows of the table, each for the order of shapes its routine takes; the other order of the same
+// pair runs the row and turns its normals around (collideShapes).
+void row(const Sphere& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
 {
-    const std::size_t first = out.size();
-    collide();
-    for (std::size_t i = first; i < out.size(); ++i)
-    {
-        out[i].normal = -out[i].normal;
-    }
+    sphereSphere(a, pa, b, pb, t, out);
 }
+void row(const Sphere& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    sphereBox(a, pa, b, pb, t, out);
+}
+void row(const Sphere& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    spherePlane(a, pa, b, pb, t, out);
+}
+void row(const Sphere& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideSphereMesh(a, pa, b, pb, t, out);
+}
+void row(const Box& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideBoxBox(a, pa, b, pb, t, out);
+}
+void row(const Box& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    boxPlane(a, pa, b, pb, t, out);
+}
+void row(const Box& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideBoxMesh(a, pa, b, pb, t, out);
+}
+void row(const Mesh& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideMeshPlane(a, pa, b, pb, t, out);
+}
+void row(const Mesh& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideMeshMesh(a, pa, b, pb, t, out);
+}
+void row(const Capsule& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideCapsuleSphere(a, pa, b, pb, t, out);
+}
+void row(const Capsule& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideCapsuleBox(a, pa, b, pb, t, out);
+}
+void row(const Capsule& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideCapsulePlane(a, pa, b, pb, t, out);
+}
+void row(const Capsule& a, const Pose& pa, const Capsule& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideCapsuleCapsule(a, pa, b, pb, t, out);
+}
+void row(const Capsule& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+{
+    collideCapsuleMesh(a, pa, b, pb, t, out);
+}
+
+template <class A, class B>
+concept HasRow = requires(const A& a, const B& b, const Pose& pose, Real t, std::vector<ContactPoint>& out)
+{
+    row(a, pose, b, pose, t, out);
+};
 
 } // namespace
 
 void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
                    std::vector<ContactPoint>& out)
 {
-    if (collideCapsulePair(a, poseA, b, poseB, threshold, out))
-    {
-        return;
-    }
-    if (const auto* sa = std::get_if<Sphere>(&a))
-    {
-        if (const auto* sb = std::get_if<Sphere>(&b))
+    // one jump on the two shapes' kinds (this runs at every impulse of every pass)
+    std::visit(
+        [&](const auto& shapeA, const auto& shapeB)
         {
-            return sphereSphere(*sa, poseA, *sb, poseB, threshold, out);
-        }
-        if (const auto* bb = std::get_if<Box>(&b))
-        {
-            return sphereBox(*sa, poseA, *bb, poseB, threshold, out);
-        }
-        if (const auto* pb = std::get_if<Plane>(&b))
-        {
-            return spherePlane(*sa, poseA, *pb, poseB, threshold, out);
-        }
-        if (const auto* mb = std::get_if<Mesh>(&b))
-        {
-            return collideSphereMesh(*sa, poseA, *mb, poseB, threshold, out);
-        }
-    }
-    if (const auto* ba = std::get_if<Box>(&a))
-    {
-        if (const auto* sb = std::get_if<Sphere>(&b))
-        {
-            return swapped([&] { sphereBox(*sb, poseB, *ba, poseA, threshold, out); }, out);
-        }
-        if (const auto* bb = std::get_if<Box>(&b))
-        {
-            return collideBoxBox(*ba, poseA, *bb, poseB, threshold, out);
-        }
-        if (const auto* pb = std::get_if<Plane>(&b))
-        {
-            return boxPlane(*ba, poseA, *pb, poseB, threshold, out);
-        }
-        if (const auto* mb = std::get_if<Mesh>(&b))
-        {
-            return collideBoxMesh(*ba, poseA, *mb, poseB, threshold, out);
-        }
-    }
-    if (const auto* pa = std::get_if<Plane>(&a))
-    {
-        if (const auto* sb = std::get_if<Sphere>(&b))
-        {
-            return swapped([&] { spherePlane(*sb, poseB, *pa, poseA, threshold, out); }, out);
-        }
-        if (const auto* bb = std::get_if<Box>(&b))
-        {
-            return swapped([&] { boxPlane(*bb, poseB, *pa, poseA, threshold, out); }, out);
-        }
-        if (const auto* mb = std::get_if<Mesh>(&b))
-        {
-            return swapped([&] { collideMeshPlane(*mb, poseB, *pa, poseA, threshold, out); }, out);
-        }
-    }
-    if (const auto* ma = std::get_if<Mesh>(&a))
-    {
-        if (const auto* sb = std::get_if<Sphere>(&b))
-        {
-            return swapped([&] { collideSphereMesh(*sb, poseB, *ma, poseA, threshold, out); }, out);
-        }
-        if (const auto* bb = std::get_if<Box>(&b))
-        {
-            return swapped([&] { collideBoxMesh(*bb, poseB, *ma, poseA, threshold, out); }, out);
-        }
-        if (const auto* pb = std::get_if<Plane>(&b))
-        {
-            return collideMeshPlane(*ma, poseA, *pb, poseB, threshold, out);
-        }
-        if (const auto* mb = std::get_if<Mesh>(&b))
-        {
-            return collideMeshMesh(*ma, poseA, *mb, poseB, threshold, out);
-        }
-    }
-    // plane-plane: two static half-spaces never need contact
+            using A = std::decay_t<decltype(shapeA)>;
+            using B = std::decay_t<decltype(shapeB)>;
+            if constexpr (HasRow<A, B>)
+            {
+                row(shapeA, poseA, shapeB, poseB, threshold, out);
+            }
+            else if constexpr (HasRow<B, A>)
+            {
+                const std::size_t first = out.size();
+                row(shapeB, poseB, shapeA, poseA, threshold, out);
+                for (std::size_t i = first; i < out.size(); ++i)
+                {
+                    out[i].normal = -out[i].normal;
+                }
+            }
+            // else plane-plane: two static half-spaces never need contact
+        },
+        a, b);
 }
 
 Real leastSignedDistance(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB,
