@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -170,6 +171,27 @@ TEST(PileOracle, FailsWhenABodyLeavesTheBox)
     }
     ASSERT_TRUE(run.failure().has_value());
     EXPECT_NE(run.failure()->find("1 bodies out of the box at t = 0.1"), std::string::npos) << *run.failure();
+}
+
+TEST(PileOracle, ReportsTheDeepestPairAlongTheRun)
+{
+    // two cubes 2 mm inside each other fall freely side by side, outside the walls: with push-out off
+    // nothing parts them, so every sample finds the same 2 mm, until the escape check fails the run
+    io::Scene scene = loadReferenceScene("box_pile_1000");
+    scene.options.pushOut = false;
+    const Quat level = Quat::Identity();
+    scene.world.setState(scene.dynamicBodies[0], Vec3(0.0, 3.0, 20.0), level, Vec3::Zero(), Vec3::Zero());
+    scene.world.setState(scene.dynamicBodies[1], Vec3(0.198, 3.0, 20.0), level, Vec3::Zero(), Vec3::Zero());
+    PileRun run(std::move(scene), PileOracleKind::StaysInTheBox, 0.1);
+    while (!run.finished())
+    {
+        run.step(std::cout);
+    }
+    EXPECT_EQ(run.figures().step, 100);
+    EXPECT_TRUE(run.failure().has_value());
+    EXPECT_NEAR(run.figures().deepest, 0.002, 1e-9);
+    // the size of a body is the diameter of its bounding sphere: for the cube 2 sqrt(3) 0.1
+    EXPECT_NEAR(run.figures().deepestRelative, 0.002 / (2.0 * std::sqrt(3.0) * 0.1), 1e-8);
 }
 
 TEST(PileOracle, FailsTwoCubesTwoPercentOfRInsideEachOther)

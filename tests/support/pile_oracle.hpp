@@ -5,7 +5,7 @@
 //
 // - Scenes 11 and 12 (balls and cubes of size r fall into a box whose inner walls are at x, y = +-2):
 //   every 100 steps no body is outside the box, and at the end the deepest penetration of any two
-//   bodies is under 1 % of r.
+//   bodies is under 1 % of r. The deepest pair every 50 steps is reported, and not judged.
 // - Scene 14 (nonconvex meshes fall into a box): at the end the kinetic energy is under 1 % of its
 //   peak, and no pair, sampled every 50 steps, is deeper than 1 % of the smaller body's size.
 #pragma once
@@ -41,8 +41,8 @@ struct PileFigures
 {
     long long step = 0;         ///< steps taken since the scene's start
     Real peakKinetic = 0.0;     ///< joules, over every step so far
-    Real deepest = 0.0;         ///< Settles: deepest sampled penetration so far, metres
-    Real deepestRelative = 0.0; ///< Settles: the same relative to the smaller body's size
+    Real deepest = 0.0;         ///< deepest penetration so far, sampled every 50 steps, metres
+    Real deepestRelative = 0.0; ///< the same relative to the smaller body's size (its bounding diameter)
 };
 
 /// One limit of the oracle at the end of the run: it holds when value < limit.
@@ -102,7 +102,8 @@ class PileRun
                 return;
             }
         }
-        if (kind_ == PileOracleKind::Settles && k % 50 == 0)
+        // Scenes 11 and 12 judge the depth at the end only; their samples are figures, not a limit.
+        if (k % 50 == 0)
         {
             const Penetration p = deepestPenetration(world);
             figures_.deepest = std::max(figures_.deepest, p.depth);
@@ -112,12 +113,8 @@ class PileRun
         {
             log << scene_.name << " t " << world.time() << " s: kinetic " << world.kineticEnergy() << " J (peak "
                 << figures_.peakKinetic << "), " << world.lastStepStats().contactPairs << " contacts";
-            if (kind_ == PileOracleKind::Settles)
-            {
-                log << ", deepest so far " << figures_.deepest << " m (" << 100.0 * figures_.deepestRelative
-                    << " % of the smaller body)";
-            }
-            log << std::endl;
+            log << ", deepest sampled so far " << figures_.deepest << " m (" << 100.0 * figures_.deepestRelative
+                << " % of the smaller body)" << std::endl;
         }
     }
 
