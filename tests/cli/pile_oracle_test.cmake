@@ -1,0 +1,124 @@
+# SPDX-License-Identifier: MIT
+# impulse_pile_oracle as a user runs it: checkpoints where --every puts them, --until stopping with
+# exit code 3, a resumed run reaching the state hash of the run that was not stopped (at 1 and 2
+# threads), the verdict's exit codes 0 and 1 on checkpoints made to end the run, and bad input
+# refused with exit code 2 and a message naming what was wrong. Every run is a few dozen steps.
+#
+#   cmake -DIMPULSE=<impulse_pile_oracle executable> -DWORK=<scratch dir> -P pile_oracle_test.cmake
+cmake_minimum_required(VERSION 3.21)
+
+include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
+start_checks(pile_oracle_test.cmake IMPULSE WORK)
+
+set(hex16 "[0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f]")
+set(hex16 "${hex16}${hex16}")
+
+# The state hash printed at step `step` in run_out, into `out_var` ("" when there is none).
+function(hash_at step out_var)
+    if(run_out MATCHES "step ${step} state hash (${hex16}), checkpoint")
+        set(${out_var} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+    else()
+        set(${out_var} "" PARENT_SCOPE)
+    endif()
+endfunction()
+
+macro(expect_exit code)
+    if(run_rc STREQUAL "${code}")
+        check_passed("${run_command} exits ${code}")
+    else()
+        check_failed("${run_command} exited with ${run_rc}, expected ${code}: ${run_err}")
+    endif()
+endmacro()
+
+# ---- a run stopped by --until, with a checkpoint every 20 steps --------------------------------
+run_impulse(box_pile_1000 --until 60 --every 20 --threads 1 --checkpoints straight)
+expect_exit(3)
+foreach(step 20 40 60)
+    if(EXISTS "${WORK}/straight/box_pile_1000_step_${step}.txt")
+        check_passed("a checkpoint at step ${step}")
+    else()
+        check_failed("no checkpoint at step ${step} in ${WORK}/straight")
+    endif()
+endforeach()
+hash_at(60 straight_hash)
+if(straight_hash MATCHES "^${hex16}$" AND run_out MATCHES "stopped at step 60 of 5000")
+    check_passed("stopped at step 60 with state hash ${straight_hash}")
+else()
+    check_failed("no state hash at step 60 or no stop line in:\n${run_out}")
+endif()
+
+# ---- resumed from step 20, at one and at two threads: the same state at step 60 ----------------
+foreach(threads 1 2)
+    run_impulse(box_pile_1000 --resume straight/box_pile_1000_step_20.txt --until 60 --every 0
+                --threads ${threads} --checkpoints resumed_${threads})
+    expect_exit(3)
+    hash_at(60 resumed_hash)
+    if(run_out MATCHES "resumed from [^\n]* at step 20" AND resumed_hash STREQUAL straight_hash
+       AND NOT straight_hash STREQUAL "")
+        check_passed("resumed at step 20 on ${threads} thread(s), the state hash at step 60 is the straight run's")
+    else()
+        check_failed("resumed on ${threads} thread(s): hash '${resumed_hash}' against '${straight_hash}':\n${run_out}")
+    endif()
+endforeach()
+
+# ---- the verdict: checkpoints edited to be at the scene's last step ----------------------------
+file(STRINGS "${WORK}/straight/box_pile_1000_step_60.txt" lines)
+list(TRANSFORM lines REPLACE "^step 60$" "step 5000")
+list(JOIN lines "\n" text)
+file(WRITE "${WORK}/at_the_end.txt" "${text}\n")
+run_impulse(box_pile_1000 --resume at_the_end.txt)
+expect_exit(0)
+if(run_out MATCHES "PASS: deepest penetration at the end")
+    check_passed("a pile with no overlap at its last step passes")
+else()
+    check_failed("no PASS line in:\n${run_out}")
+endif()
+# the second dynamic cube put where the first is (line 9 is the ground, 10-13 the walls, 14 on the
+# cubes), so that the two are wholly inside each other
+list(GET lines 13 first_cube)
+list(REMOVE_AT lines 14)
+list(INSERT lines 14 "${first_cube}")
+list(JOIN lines "\n" text)
+file(WRITE "${WORK}/overlapping.txt" "${text}\n")
+run_impulse(box_pile_1000 --resume overlapping.txt)
+expect_exit(1)
+if(run_out MATCHES "FAIL: deepest penetration at the end")
+    check_passed("two cubes inside each other at the last step fail the oracle")
+else()
+    check_failed("no FAIL line in:\n${run_out}")
+endif()
+
+# ---- bad input: exit code 2 and what was wrong --------------------------------------------------
+run_impulse(no_such_pile)
+expect_exit(2)
+if(run_err MATCHES "scene: \"no_such_pile\" is not a reference pile \\(box_pile_1000")
+    check_passed("an unknown scene is refused, with the piles it could be")
+else()
+    check_failed("unknown scene: ${run_err}")
+endif()
+file(WRITE "${WORK}/garbage.txt" "not a checkpoint\n")
+run_impulse(box_pile_1000 --resume garbage.txt)
+expect_exit(2)
+if(run_err MATCHES "garbage.txt: line 1: not a pile checkpoint")
+    check_passed("a file that is no checkpoint is refused by name and line")
+else()
+    check_failed("garbage checkpoint: ${run_err}")
+endif()
+run_impulse(sphere_pile_1000 --resume straight/box_pile_1000_step_20.txt)
+expect_exit(2)
+if(run_err MATCHES "scene: the checkpoint is of \"box_pile_1000\", not of \"sphere_pile_1000\"")
+    check_passed("another scene's checkpoint is refused")
+else()
+    check_failed("another scene's checkpoint: ${run_err}")
+endif()
+run_impulse(box_pile_1000 --resume straight/box_pile_1000_step_60.txt --until 40)
+expect_exit(2)
+if(run_err MATCHES "--until: step 40 is not after the checkpoint's step 60")
+    check_passed("--until before the checkpoint is refused")
+else()
+    check_failed("--until before the checkpoint: ${run_err}")
+endif()
+run_impulse(box_pile_1000 --every -5)
+expect_exit(2)
+
+finish_checks("impulse_pile_oracle")
