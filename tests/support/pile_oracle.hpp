@@ -112,9 +112,9 @@ class PileRun
         if (k % 1000 == 0)
         {
             log << scene_.name << " t " << world.time() << " s: kinetic " << world.kineticEnergy() << " J (peak "
-                << figures_.peakKinetic << "), " << world.lastStepStats().contactPairs << " contacts";
-            log << ", deepest sampled so far " << figures_.deepest << " m (" << 100.0 * figures_.deepestRelative
-                << " % of the smaller body)" << std::endl;
+                << figures_.peakKinetic << "), " << world.lastStepStats().contactPairs
+                << " contacts, deepest sampled so far " << figures_.deepest << " m ("
+                << 100.0 * figures_.deepestRelative << " % of the smaller body)" << std::endl;
         }
     }
 
