@@ -10,12 +10,12 @@ namespace
 
 TEST(ReferenceScene14, TwoHundredNonconvexBodiesSettleWithoutInterpenetrating)
 {
-    expectPileOracleHolds("nonconvex_pile_200", PileOracleKind::Settles);
+    expectPileOracleHolds("nonconvex_pile_200");
 }
 
 TEST(ReferenceScene14, AThousandNonconvexBodiesSettleWithoutInterpenetrating)
 {
-    expectPileOracleHolds("nonconvex_pile_1000", PileOracleKind::Settles);
+    expectPileOracleHolds("nonconvex_pile_1000");
 }
 
 } // namespace

@@ -11,22 +11,22 @@ namespace
 
 TEST(ReferenceScene11, ThousandSpheresStayInTheBoxWithoutOverlaps)
 {
-    expectPileOracleHolds("sphere_pile_1000", PileOracleKind::StaysInTheBox, 0.1);
+    expectPileOracleHolds("sphere_pile_1000");
 }
 
 TEST(ReferenceScene12, ThousandCubesStayInTheBoxWithoutOverlaps)
 {
-    expectPileOracleHolds("box_pile_1000", PileOracleKind::StaysInTheBox, 0.1);
+    expectPileOracleHolds("box_pile_1000");
 }
 
 TEST(ReferenceScene11, TenThousandSpheresStayInTheBoxWithoutOverlaps)
 {
-    expectPileOracleHolds("sphere_pile_10000", PileOracleKind::StaysInTheBox, 0.1);
+    expectPileOracleHolds("sphere_pile_10000");
 }
 
 TEST(ReferenceScene12, TenThousandCubesStayInTheBoxWithoutOverlaps)
 {
-    expectPileOracleHolds("box_pile_10000", PileOracleKind::StaysInTheBox, 0.1);
+    expectPileOracleHolds("box_pile_10000");
 }
 
 } // namespace

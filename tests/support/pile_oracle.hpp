@@ -11,6 +11,7 @@
 #pragma once
 
 #include "support/penetration.hpp"
+#include "support/scene_run.hpp"
 
 #include <impulse/io/scene.hpp>
 
@@ -24,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -311,5 +313,42 @@ class PileRun
     PileFigures figures_;
     std::optional<std::string> failure_;
 };
+
+/// A shipped reference pile and how its oracle judges it; kReferencePiles is in the order of the names.
+struct ReferencePile
+{
+    std::string_view name;
+    PileOracleKind kind;
+    Real size; ///< r of scenes 11 and 12
+};
+
+inline constexpr std::array<ReferencePile, 6> kReferencePiles = {{
+    {"box_pile_1000", PileOracleKind::StaysInTheBox, 0.1},
+    {"box_pile_10000", PileOracleKind::StaysInTheBox, 0.1},
+    {"nonconvex_pile_1000", PileOracleKind::Settles, 0.0},
+    {"nonconvex_pile_200", PileOracleKind::Settles, 0.0},
+    {"sphere_pile_1000", PileOracleKind::StaysInTheBox, 0.1},
+    {"sphere_pile_10000", PileOracleKind::StaysInTheBox, 0.1},
+}};
+
+/// The reference pile of that name; nullptr when there is none.
+inline const ReferencePile* findReferencePile(std::string_view name)
+{
+    const auto pile = std::find_if(kReferencePiles.begin(), kReferencePiles.end(),
+                                   [&](const ReferencePile& candidate) { return candidate.name == name; });
+    return pile == kReferencePiles.end() ? nullptr : &*pile;
+}
+
+/// The pile's run as its test makes it: the shipped scene; scenes 11 and 12 on every core (the
+/// trajectory is the same at any thread count), scene 14 at the scene's own count.
+inline PileRun referencePileRun(const ReferencePile& pile)
+{
+    PileRun run(loadReferenceScene(std::string(pile.name)), pile.kind, pile.size);
+    if (pile.kind == PileOracleKind::StaysInTheBox)
+    {
+        run.scene().options.threads = 0;
+    }
+    return run;
+}
 
 } // namespace impulse::test

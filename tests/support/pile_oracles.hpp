@@ -4,7 +4,6 @@
 #pragma once
 
 #include "support/pile_oracle.hpp"
-#include "support/scene_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,13 +13,11 @@
 namespace impulse::test
 {
 
-inline void expectPileOracleHolds(const std::string& name, PileOracleKind kind, Real size = 0.0)
+inline void expectPileOracleHolds(const std::string& name)
 {
-    PileRun run(loadReferenceScene(name), kind, size);
-    if (kind == PileOracleKind::StaysInTheBox)
-    {
-        run.scene().options.threads = 0; // every core: the trajectory is the same at any thread count
-    }
+    const ReferencePile* pile = findReferencePile(name);
+    ASSERT_NE(pile, nullptr) << name << " is not a reference pile";
+    PileRun run = referencePileRun(*pile);
     while (!run.finished())
     {
         run.step(std::cout);

@@ -13,33 +13,6 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
-#include <map>
-
-namespace
-{
-
-using impulse::test::PileOracleKind;
-
-struct PileScene
-{
-    PileOracleKind kind;
-    impulse::Real size; ///< r of scenes 11 and 12
-};
-
-const std::map<std::string, PileScene>& referencePiles()
-{
-    static const std::map<std::string, PileScene> piles = {
-        {"sphere_pile_1000", {PileOracleKind::StaysInTheBox, 0.1}},
-        {"sphere_pile_10000", {PileOracleKind::StaysInTheBox, 0.1}},
-        {"box_pile_1000", {PileOracleKind::StaysInTheBox, 0.1}},
-        {"box_pile_10000", {PileOracleKind::StaysInTheBox, 0.1}},
-        {"nonconvex_pile_200", {PileOracleKind::Settles, 0.0}},
-        {"nonconvex_pile_1000", {PileOracleKind::Settles, 0.0}},
-    };
-    return piles;
-}
-
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -51,9 +24,9 @@ int main(int argc, char** argv)
     long long until = -1;
     int threads = -1;
     std::string names;
-    for (const auto& [pile, spec] : referencePiles())
+    for (const impulse::test::ReferencePile& pile : impulse::test::kReferencePiles)
     {
-        names += (names.empty() ? "" : ", ") + pile;
+        names += (names.empty() ? "" : ", ") + std::string(pile.name);
     }
     app.add_option("scene", name, "reference pile: " + names)->required();
     app.add_option("--checkpoints", directory, "directory for the checkpoints (default: the current one)");
@@ -72,23 +45,18 @@ int main(int argc, char** argv)
         return app.exit(error) == 0 ? 0 : 2;
     }
 
-    const auto pile = referencePiles().find(name);
-    if (pile == referencePiles().end())
+    const impulse::test::ReferencePile* pile = impulse::test::findReferencePile(name);
+    if (pile == nullptr)
     {
         std::cerr << "impulse_pile_oracle: scene: \"" << name << "\" is not a reference pile (" << names << ")\n";
         return 2;
     }
     try
     {
-        impulse::test::PileRun run(impulse::io::loadScene(std::string(IMPULSE_SCENES_DIR) + "/" + name + ".json"),
-                                   pile->second.kind, pile->second.size);
+        impulse::test::PileRun run = impulse::test::referencePileRun(*pile);
         if (threads >= 0)
         {
             run.scene().options.threads = threads;
-        }
-        else if (pile->second.kind == PileOracleKind::StaysInTheBox)
-        {
-            run.scene().options.threads = 0; // as the test runs it: every core
         }
         if (!resumeFrom.empty())
         {
