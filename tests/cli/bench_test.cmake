@@ -12,8 +12,6 @@ cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
 start_checks(bench_test.cmake IMPULSE SCENES WORK)
 
-set(hex16 "[0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f]")
-set(hex16 "${hex16}${hex16}")
 set(number "[0-9]+\\.[0-9]+")
 set(short --steps 20 --warm-up 2)
 

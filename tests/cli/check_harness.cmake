@@ -6,6 +6,10 @@
 #   start_checks(<script name> <required variable>...)  # then check_passed / check_failed ...
 #   run_impulse(<arguments>...)                         # then expect_success() or checks of run_*
 #   finish_checks(<what was checked>)                   # FATAL_ERROR listing every failure
+#   ${hex16}                                            # a regex for a 16-hex-digit state hash
+
+set(hex16 "[0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f]")
+set(hex16 "${hex16}${hex16}")
 
 # Refuses to run without the script's -D variables, then empties WORK and the failure list.
 macro(start_checks script)
@@ -49,13 +53,18 @@ macro(run_impulse)
     string(JOIN " " run_command "impulse" ${ARGN})
 endmacro()
 
+# Checks that the last run_impulse exited with `code`.
+macro(expect_exit code)
+    if(run_rc STREQUAL "${code}")
+        check_passed("${run_command} exits ${code}")
+    else()
+        check_failed("${run_command} exited with ${run_rc}, expected ${code}: ${run_err}")
+    endif()
+endmacro()
+
 # Checks that the last run_impulse exited 0.
 macro(expect_success)
-    if(run_rc STREQUAL "0")
-        check_passed("${run_command} exits 0")
-    else()
-        check_failed("${run_command} exited with ${run_rc}: ${run_err}")
-    endif()
+    expect_exit(0)
 endmacro()
 
 # True (in `result`) when run_rc is an exit code other than 0, not a signal or a timeout, which

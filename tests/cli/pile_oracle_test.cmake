@@ -10,9 +10,6 @@ cmake_minimum_required(VERSION 3.21)
 include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
 start_checks(pile_oracle_test.cmake IMPULSE WORK)
 
-set(hex16 "[0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f][0-9a-f]")
-set(hex16 "${hex16}${hex16}")
-
 # The state hash printed at step `step` in run_out, into `out_var` ("" when there is none).
 function(hash_at step out_var)
     if(run_out MATCHES "step ${step} state hash (${hex16}), checkpoint")
@@ -21,14 +18,6 @@ function(hash_at step out_var)
         set(${out_var} "" PARENT_SCOPE)
     endif()
 endfunction()
-
-macro(expect_exit code)
-    if(run_rc STREQUAL "${code}")
-        check_passed("${run_command} exits ${code}")
-    else()
-        check_failed("${run_command} exited with ${run_rc}, expected ${code}: ${run_err}")
-    endif()
-endmacro()
 
 # Checks the last run's exit code, and that its output `stream` (run_out or run_err) matches `pattern`.
 function(expect_run code stream pattern what)
