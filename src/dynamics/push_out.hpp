@@ -28,7 +28,8 @@ bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real 
 
 /// The same for a pair that overlaps deeper than `allowance`, both bodies moving: the least move of
 /// the two in their joint mass metric, so the pair's centre of mass stays where it was (a static
-/// body does not move), cut back by one fraction so that neither body moves further than its reach.
+/// body does not move), cut back by one fraction so that neither body moves further than its reach
+/// nor turns further than moves a point by the pair's deepest overlap.
 /// Returns whether they moved.
 bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real reachB, PushOutScratch& scratch);
 
