@@ -677,6 +677,32 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
         }
         return work > 1e-9 * scale;
     };
+    // The same from the motions' kinetic energies. The work above is exact in exact arithmetic, but
+    // loads far beyond what the motion needs (a least-squares start at a pinch: 1e10 N s on a 1 kg
+    // cube, cancelling to a few m/s) leave it nothing but round-off, with either sign; the energies
+    // themselves do not cancel that way.
+    const auto gainsEnergy = [&]
+    {
+        Real gained = 0.0;
+        Real scale = 0.0;
+        for (std::size_t m = 0; m < motions.size(); ++m)
+        {
+            const Motion& now = motions[m];
+            const Motion& before = untouched[m];
+            if (now.invMass == 0.0)
+            {
+                continue; // immovable: nothing changed
+            }
+            const RigidBody& moved = *now.body;
+            const Mat3 inertia = moved.rotation * moved.principalInertia.asDiagonal() * moved.rotation.transpose();
+            gained += 0.5 * moved.mass * (now.v - before.v).dot(now.v + before.v) +
+                      0.5 * (now.w - before.w).dot(inertia * (now.w + before.w));
+            scale += 0.5 * moved.mass * (now.v.squaredNorm() + before.v.squaredNorm()) +
+                     0.5 * (now.w.dot(inertia * now.w) + before.w.dot(inertia * before.w));
+        }
+        return gained > 1e-9 * scale;
+    };
+    const auto addsOrGainsEnergy = [&] { return addsEnergy() || gainsEnergy(); };
     untouched = motions;
     const auto reset = [&]
     {
@@ -782,7 +808,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
     // until the cap. Such a patch is solved again as inelastic and from rest: its targets
     // (u_n >= 0) are always reachable and each normal step of that solve lowers the energy. Should
     // even that add energy, the patch is left to the pairwise impulses.
-    if (addsEnergy())
+    if (addsOrGainsEnergy())
     {
         reset();
         for (Row& row : rows)
@@ -790,7 +816,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
             row.keep = 0.0;
         }
         gaussSeidel();
-        if (addsEnergy())
+        if (addsOrGainsEnergy())
         {
             reset();
             return false;
