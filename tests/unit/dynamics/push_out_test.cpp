@@ -76,6 +76,10 @@ TEST(PushOutOfSupports, AWedgedCubeIsTurnedNoFurtherThanMovesItsFarthestPointByT
                                     staticWall(-Vec3::UnitY(), reachAlongY - kOverlap)};
     RigidBody cube = tiltedCube();
     ASSERT_NEAR(deepestOverlap(cube, walls), kOverlap, 1e-12);
+    // the scene's premise: the least move, turning until both edges clear, would move the farthest
+    // point well beyond the overlap, so the limit has something to cut
+    const Real clearingTurn = kOverlap / (kHalf * (std::cos(kTilt) - std::sin(kTilt)));
+    ASSERT_GT(clearingTurn * cube.boundingRadius, 1.5 * kOverlap);
     const Quat start = cube.orientation;
     const std::vector<Support> supports = {{&walls[0], 0.5}, {&walls[1], 0.5}};
     PushOutScratch scratch;
@@ -92,10 +96,6 @@ TEST(PushOutOfSupports, AWedgedCubeIsTurnedNoFurtherThanMovesItsFarthestPointByT
     const Real left = deepestOverlap(cube, walls);
     EXPECT_NEAR(left, kOverlap - turned * kHalf * (std::cos(kTilt) - std::sin(kTilt)), 1e-5);
     EXPECT_GT(left, 0.5 * kOverlap);
-
-    // the least move, uncapped, would have gone further: turning until both edges clear
-    const Real clearingTurn = kOverlap / (kHalf * (std::cos(kTilt) - std::sin(kTilt)));
-    EXPECT_GT(clearingTurn * cube.boundingRadius, 1.5 * kOverlap);
 }
 
 } // namespace
