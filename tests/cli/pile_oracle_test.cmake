@@ -69,18 +69,40 @@ file(WRITE "${WORK}/at_the_end.txt" "${text}\n")
 run_impulse(box_pile_1000 --resume at_the_end.txt)
 expect_run(0 run_out "PASS: deepest penetration at the end"
            "a pile with no overlap at its last step passes")
-# the second dynamic cube put where the first is (line 9 is the ground, 10-13 the walls, 14 on the
+# the second dynamic cube put where the first is (line 10 is the ground, 11-14 the walls, 15 on the
 # cubes), so that the two are wholly inside each other
-list(GET lines 13 first_cube)
-list(REMOVE_AT lines 14)
-list(INSERT lines 14 "${first_cube}")
+list(GET lines 14 first_cube)
+list(REMOVE_AT lines 15)
+list(INSERT lines 15 "${first_cube}")
 list(JOIN lines "\n" text)
 file(WRITE "${WORK}/overlapping.txt" "${text}\n")
 run_impulse(box_pile_1000 --resume overlapping.txt)
 expect_run(1 run_out "FAIL: deepest penetration at the end"
            "two cubes inside each other at the last step fail the oracle")
 
+# ---- a checkpoint of the first format (no deepest_sample line) still continues the run -----------
+file(STRINGS "${WORK}/straight/box_pile_1000_step_20.txt" lines)
+list(TRANSFORM lines REPLACE "^impulse pile checkpoint 2$" "impulse pile checkpoint 1")
+list(FILTER lines EXCLUDE REGEX "^deepest_sample ")
+list(JOIN lines "\n" text)
+file(WRITE "${WORK}/version_1.txt" "${text}\n")
+run_impulse(box_pile_1000 --resume version_1.txt --until 60 --every 0 --threads 1 --checkpoints version_1)
+expect_exit(3)
+hash_at(60 version_1_hash)
+if(version_1_hash STREQUAL straight_hash AND NOT straight_hash STREQUAL "")
+    check_passed("a first-format checkpoint of step 20 reaches the straight run's state at step 60")
+else()
+    check_failed("first-format checkpoint: hash '${version_1_hash}' against '${straight_hash}':\n${run_out}\n${run_err}")
+endif()
+
 # ---- bad input: exit code 2 and what was wrong --------------------------------------------------
+file(STRINGS "${WORK}/straight/box_pile_1000_step_20.txt" lines)
+list(TRANSFORM lines REPLACE "^deepest_sample .*$" "deepest_sample 20 0 999999")
+list(JOIN lines "\n" text)
+file(WRITE "${WORK}/no_such_body.txt" "${text}\n")
+run_impulse(box_pile_1000 --resume no_such_body.txt)
+expect_run(2 run_err "no_such_body.txt: line 7: expected the field \"deepest_sample\""
+           "a deepest pair that names no body of the scene is refused by line and field")
 run_impulse(no_such_pile)
 expect_run(2 run_err "scene: \"no_such_pile\" is not a reference pile \\(box_pile_1000"
            "an unknown scene is refused, with the piles it could be")

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -86,6 +87,7 @@ TEST(PileCheckpoint, ContinuesTheRunBitForBitWithItsFigures)
     EXPECT_GT(first.figures().deepest, 0.0) << "the pile has landed by the cut: some pair touched at a sample";
     EXPECT_EQ(continued.figures().deepest, first.figures().deepest);
     EXPECT_EQ(continued.figures().deepestRelative, first.figures().deepestRelative);
+    EXPECT_EQ(continued.deepestSample(), first.deepestSample());
     EXPECT_EQ(continued.world().stateHash(), first.world().stateHash());
     while (!continued.finished())
     {
@@ -97,6 +99,7 @@ TEST(PileCheckpoint, ContinuesTheRunBitForBitWithItsFigures)
     EXPECT_EQ(continued.figures().peakKinetic, straight.figures().peakKinetic);
     EXPECT_EQ(continued.figures().deepest, straight.figures().deepest);
     EXPECT_EQ(continued.figures().deepestRelative, straight.figures().deepestRelative);
+    EXPECT_EQ(continued.deepestSample(), straight.deepestSample());
     EXPECT_EQ(continued.world().time(), straight.world().time());
     EXPECT_EQ(continued.world().stateHash(), straight.world().stateHash());
     const WorldSnapshot a = continued.world().snapshot();
@@ -182,6 +185,7 @@ TEST(PileOracle, ReportsTheDeepestPairAlongTheRun)
     const Quat level = Quat::Identity();
     scene.world.setState(scene.dynamicBodies[0], Vec3(0.0, 3.0, 20.0), level, Vec3::Zero(), Vec3::Zero());
     scene.world.setState(scene.dynamicBodies[1], Vec3(0.198, 3.0, 20.0), level, Vec3::Zero(), Vec3::Zero());
+    const std::array<BodyId, 2> pair = {scene.dynamicBodies[0], scene.dynamicBodies[1]};
     PileRun run(std::move(scene), PileOracleKind::StaysInTheBox, 0.1);
     while (!run.finished())
     {
@@ -192,6 +196,12 @@ TEST(PileOracle, ReportsTheDeepestPairAlongTheRun)
     EXPECT_NEAR(run.figures().deepest, 0.002, 1e-9);
     // the size of a body is the diameter of its bounding sphere: for the cube 2 sqrt(3) 0.1
     EXPECT_NEAR(run.figures().deepestRelative, 0.002 / (2.0 * std::sqrt(3.0) * 0.1), 1e-8);
+    // where it was first sampled: the first sample, of the two cubes (the later ones find it no deeper)
+    EXPECT_EQ(run.figures().deepestStep, 50);
+    EXPECT_EQ(run.figures().deepestFirst, pair[0].index);
+    EXPECT_EQ(run.figures().deepestSecond, pair[1].index);
+    EXPECT_EQ(run.deepestSample(),
+              "step 50, bodies " + std::to_string(pair[0].index) + " and " + std::to_string(pair[1].index));
 }
 
 TEST(PileOracle, FailsTwoCubesTwoPercentOfRInsideEachOther)

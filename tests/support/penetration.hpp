@@ -7,6 +7,7 @@
 #include <impulse/world.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace impulse::test
@@ -16,6 +17,10 @@ struct Penetration
 {
     Real depth = 0.0;    ///< deepest penetration, positive, metres
     Real relative = 0.0; ///< the largest depth relative to the size (diameter) of the smaller body
+    /// The pair whose depth is the largest relative to its smaller body (the two are the same pair
+    /// when the dynamic bodies are all of one size); both 0 when no pair overlaps.
+    std::uint32_t first = 0;
+    std::uint32_t second = 0;
 };
 
 /// Every pair of bodies whose bounding spheres meet, at least one dynamic; planes against all.
@@ -47,7 +52,12 @@ inline Penetration deepestPenetration(const World& world)
             for (const ContactPoint& point : points)
             {
                 result.depth = std::max(result.depth, -point.phi);
-                result.relative = std::max(result.relative, -point.phi / size);
+                if (-point.phi / size > result.relative)
+                {
+                    result.relative = -point.phi / size;
+                    result.first = i;
+                    result.second = j;
+                }
             }
         }
     }

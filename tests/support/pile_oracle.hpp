@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -45,6 +46,11 @@ struct PileFigures
     Real peakKinetic = 0.0;     ///< joules, over every step so far
     Real deepest = 0.0;         ///< deepest penetration so far, sampled every 50 steps, metres
     Real deepestRelative = 0.0; ///< the same relative to the smaller body's size (its bounding diameter)
+    /// Where deepestRelative was sampled: the step and the pair of bodies (0 when none has overlapped),
+    /// so that a deep figure can be looked into from the checkpoint before it.
+    long long deepestStep = 0;
+    std::uint32_t deepestFirst = 0;
+    std::uint32_t deepestSecond = 0;
 };
 
 /// One limit of the oracle at the end of the run: it holds when value < limit.
@@ -109,15 +115,33 @@ class PileRun
         {
             const Penetration p = deepestPenetration(world);
             figures_.deepest = std::max(figures_.deepest, p.depth);
-            figures_.deepestRelative = std::max(figures_.deepestRelative, p.relative);
+            if (p.relative > figures_.deepestRelative)
+            {
+                figures_.deepestRelative = p.relative;
+                figures_.deepestStep = k;
+                figures_.deepestFirst = p.first;
+                figures_.deepestSecond = p.second;
+            }
         }
         if (k % 1000 == 0)
         {
             log << scene_.name << " t " << world.time() << " s: kinetic " << world.kineticEnergy() << " J (peak "
                 << figures_.peakKinetic << "), " << world.lastStepStats().contactPairs
                 << " contacts, deepest sampled so far " << figures_.deepest << " m ("
-                << 100.0 * figures_.deepestRelative << " % of the smaller body)" << std::endl;
+                << 100.0 * figures_.deepestRelative << " % of the smaller body, " << deepestSample() << ")"
+                << std::endl;
         }
+    }
+
+    /// Where the deepest relative overlap was sampled, as the log prints it: "step K, bodies i and j".
+    std::string deepestSample() const
+    {
+        if (figures_.deepestStep == 0)
+        {
+            return "no overlap sampled";
+        }
+        return "step " + std::to_string(figures_.deepestStep) + ", bodies " + std::to_string(figures_.deepestFirst) +
+               " and " + std::to_string(figures_.deepestSecond);
     }
 
     /// The limits that are judged at the end of the run.
@@ -141,8 +165,9 @@ class PileRun
         std::ofstream out(path, std::ios::trunc);
         out << kMagic << "\nscene " << scene_.name << "\nstep " << figures_.step << "\npeak_kinetic "
             << hex(figures_.peakKinetic) << "\ndeepest " << hex(figures_.deepest) << "\ndeepest_relative "
-            << hex(figures_.deepestRelative) << "\ntime " << hex(snapshot.time) << "\nbodies " << snapshot.bodies.size()
-            << "\n";
+            << hex(figures_.deepestRelative) << "\ndeepest_sample " << figures_.deepestStep << ' '
+            << figures_.deepestFirst << ' ' << figures_.deepestSecond << "\ntime " << hex(snapshot.time) << "\nbodies "
+            << snapshot.bodies.size() << "\n";
         for (const BodyState& b : snapshot.bodies)
         {
             for (const Real value : stateValues(b))
@@ -168,7 +193,9 @@ class PileRun
             throw std::runtime_error(path + ": cannot open the checkpoint");
         }
         std::string line;
-        if (!std::getline(in, line) || line != kMagic)
+        // version 1 is version 2 without the line deepest_sample
+        const bool hasSample = std::getline(in, line) && line == kMagic;
+        if (!hasSample && line != kMagicVersion1)
         {
             throw std::runtime_error(path + ": line 1: not a pile checkpoint (expected \"" + std::string(kMagic) +
                                      "\")");
@@ -213,6 +240,25 @@ class PileRun
         figures.peakKinetic = number("peak_kinetic", field("peak_kinetic"));
         figures.deepest = number("deepest", field("deepest"));
         figures.deepestRelative = number("deepest_relative", field("deepest_relative"));
+        if (hasSample)
+        {
+            ++lineNumber;
+            std::string key;
+            long long sampleStep = -1;
+            long long first = -1;
+            long long second = -1;
+            if (!std::getline(in, line) || !(std::istringstream(line) >> key >> sampleStep >> first >> second) ||
+                key != "deepest_sample" || sampleStep < 0 || sampleStep > figures.step || first < 0 || second < 0 ||
+                std::max(first, second) >= static_cast<long long>(scene_.world.bodyCount()))
+            {
+                throw std::runtime_error(path + ": line " + std::to_string(lineNumber) +
+                                         ": expected the field \"deepest_sample\": a step up to the checkpoint's and "
+                                         "two bodies of the scene");
+            }
+            figures.deepestStep = sampleStep;
+            figures.deepestFirst = static_cast<std::uint32_t>(first);
+            figures.deepestSecond = static_cast<std::uint32_t>(second);
+        }
         WorldSnapshot snapshot;
         snapshot.time = number("time", field("time"));
         const Real bodies = number("bodies", field("bodies"));
@@ -284,7 +330,8 @@ class PileRun
     }
 
   private:
-    static constexpr const char* kMagic = "impulse pile checkpoint 1";
+    static constexpr const char* kMagic = "impulse pile checkpoint 2";
+    static constexpr const char* kMagicVersion1 = "impulse pile checkpoint 1";
 
     static std::string hex(Real value)
     {

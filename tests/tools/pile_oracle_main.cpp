@@ -113,9 +113,9 @@ int main(int argc, char** argv)
             holds = holds && check.holds();
         }
         std::printf("%s at step %lld: kinetic energy %.9g J (peak %.9g J), deepest pair sampled every 50 steps "
-                    "%.9g m (%.6g %% of the smaller body), state hash %016llx\n",
+                    "%.9g m (%.6g %% of the smaller body, %s), state hash %016llx\n",
                     name.c_str(), run.figures().step, run.world().kineticEnergy(), run.figures().peakKinetic,
-                    run.figures().deepest, 100.0 * run.figures().deepestRelative,
+                    run.figures().deepest, 100.0 * run.figures().deepestRelative, run.deepestSample().c_str(),
                     static_cast<unsigned long long>(run.world().stateHash()));
         return holds ? 0 : 1;
     }
