@@ -30,6 +30,15 @@ function(expect_run code stream pattern what)
     set(failures "${failures}" PARENT_SCOPE)
 endfunction()
 
+# Writes ${WORK}/<target>: the checkpoint ${WORK}/<source> with every line matching `regex` replaced
+# by `replacement`.
+function(edited_checkpoint source target regex replacement)
+    file(STRINGS "${WORK}/${source}" lines)
+    list(TRANSFORM lines REPLACE "${regex}" "${replacement}")
+    list(JOIN lines "\n" text)
+    file(WRITE "${WORK}/${target}" "${text}\n")
+endfunction()
+
 # ---- a run stopped by --until, with a checkpoint every 20 steps --------------------------------
 run_impulse(box_pile_1000 --until 60 --every 20 --threads 1 --checkpoints straight)
 expect_exit(3)
@@ -62,10 +71,8 @@ foreach(threads 1 2)
 endforeach()
 
 # ---- the verdict: checkpoints edited to be at the scene's last step ----------------------------
-file(STRINGS "${WORK}/straight/box_pile_1000_step_60.txt" lines)
-list(TRANSFORM lines REPLACE "^step 60$" "step 5000")
-list(JOIN lines "\n" text)
-file(WRITE "${WORK}/at_the_end.txt" "${text}\n")
+edited_checkpoint(straight/box_pile_1000_step_60.txt at_the_end.txt "^step 60$" "step 5000")
+file(STRINGS "${WORK}/at_the_end.txt" lines)
 run_impulse(box_pile_1000 --resume at_the_end.txt)
 expect_run(0 run_out "PASS: deepest penetration at the end"
            "a pile with no overlap at its last step passes")
@@ -81,8 +88,9 @@ expect_run(1 run_out "FAIL: deepest penetration at the end"
            "two cubes inside each other at the last step fail the oracle")
 
 # ---- a checkpoint of the first format (no deepest_sample line) still continues the run -----------
-file(STRINGS "${WORK}/straight/box_pile_1000_step_20.txt" lines)
-list(TRANSFORM lines REPLACE "^impulse pile checkpoint 2$" "impulse pile checkpoint 1")
+edited_checkpoint(straight/box_pile_1000_step_20.txt version_1.txt "^impulse pile checkpoint 2$"
+                  "impulse pile checkpoint 1")
+file(STRINGS "${WORK}/version_1.txt" lines)
 list(FILTER lines EXCLUDE REGEX "^deepest_sample ")
 list(JOIN lines "\n" text)
 file(WRITE "${WORK}/version_1.txt" "${text}\n")
@@ -96,10 +104,8 @@ else()
 endif()
 
 # ---- bad input: exit code 2 and what was wrong --------------------------------------------------
-file(STRINGS "${WORK}/straight/box_pile_1000_step_20.txt" lines)
-list(TRANSFORM lines REPLACE "^deepest_sample .*$" "deepest_sample 20 0 999999")
-list(JOIN lines "\n" text)
-file(WRITE "${WORK}/no_such_body.txt" "${text}\n")
+edited_checkpoint(straight/box_pile_1000_step_20.txt no_such_body.txt "^deepest_sample .*$"
+                  "deepest_sample 20 0 999999")
 run_impulse(box_pile_1000 --resume no_such_body.txt)
 expect_run(2 run_err "no_such_body.txt: line 7: expected the field \"deepest_sample\""
            "a deepest pair that names no body of the scene is refused by line and field")
