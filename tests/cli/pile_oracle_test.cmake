@@ -31,10 +31,13 @@ function(expect_run code stream pattern what)
 endfunction()
 
 # Writes ${WORK}/<target>: the checkpoint ${WORK}/<source> with every line matching `regex` replaced
-# by `replacement`.
+# by `replacement`, and without the lines matching the optional fifth argument.
 function(edited_checkpoint source target regex replacement)
     file(STRINGS "${WORK}/${source}" lines)
     list(TRANSFORM lines REPLACE "${regex}" "${replacement}")
+    if(ARGC GREATER 4)
+        list(FILTER lines EXCLUDE REGEX "${ARGV4}")
+    endif()
     list(JOIN lines "\n" text)
     file(WRITE "${WORK}/${target}" "${text}\n")
 endfunction()
@@ -89,11 +92,7 @@ expect_run(1 run_out "FAIL: deepest penetration at the end"
 
 # ---- a checkpoint of the first format (no deepest_sample line) still continues the run -----------
 edited_checkpoint(straight/box_pile_1000_step_20.txt version_1.txt "^impulse pile checkpoint 2$"
-                  "impulse pile checkpoint 1")
-file(STRINGS "${WORK}/version_1.txt" lines)
-list(FILTER lines EXCLUDE REGEX "^deepest_sample ")
-list(JOIN lines "\n" text)
-file(WRITE "${WORK}/version_1.txt" "${text}\n")
+                  "impulse pile checkpoint 1" "^deepest_sample ")
 run_impulse(box_pile_1000 --resume version_1.txt --until 60 --every 0 --threads 1 --checkpoints version_1)
 expect_exit(3)
 hash_at(60 version_1_hash)
