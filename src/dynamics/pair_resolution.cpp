@@ -396,6 +396,9 @@ Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const Pass
 Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
                              std::vector<ContactPoint>& scratch)
 {
+    // how many approaching points each support gave to the patch
+    thread_local std::vector<std::size_t> approaching;
+    approaching.clear();
     if (supports.size() > 1)
     {
         thread_local std::vector<PatchPoint> patch;
@@ -405,7 +408,9 @@ Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports,
             scratch.clear();
             collideShapes(body.shape, body.predicted, support.body->shape, support.body->predicted, settings.threshold,
                           scratch);
+            const std::size_t before = patch.size();
             collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
+            approaching.push_back(patch.size() - before);
         }
         reducePatch(body, patch);
         if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
@@ -419,9 +424,18 @@ Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports,
             return {1, false};
         }
     }
+    // Each support is then resolved as a pair. Until one of them applies an impulse, nothing has
+    // moved since the patch was collected (a patch that is not applied changes no velocity), so a
+    // support that gave no approaching point would detect the same points and find none again: it
+    // is passed over. A resting box on two others that finds nothing approaching skips both.
     Resolution all{0, true};
-    for (const Support& support : supports)
+    for (std::size_t s = 0; s < supports.size(); ++s)
     {
+        const Support& support = supports[s];
+        if (all.impulses == 0 && !approaching.empty() && approaching[s] == 0)
+        {
+            continue;
+        }
         const Resolution one = resolvePair(body, *support.body, eps, support.friction, settings, scratch);
         all.impulses += one.impulses;
         all.quiet = all.quiet && one.quiet;
