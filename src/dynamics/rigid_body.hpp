@@ -41,7 +41,9 @@ struct RigidBody
     Vec3 angularVelocity = Vec3::Zero(); ///< invInertiaWorld * angularMomentum
 
     // per-step scratch
-    Pose predicted;           ///< pose at the end of the step under the velocities of the current pass
+    /// Pose at the end of the step under the velocities of the current pass. A sphere's orientation
+    /// stays at time n: nothing about its contacts depends on it.
+    Pose predicted;
     std::uint32_t motion = 0; ///< how many times `predicted` was placed (predictBody): a change stamp
     int level = -1;           ///< contact-graph level this step; -1 for static bodies
     bool frozen = false;      ///< treated as infinite mass during shock propagation

@@ -342,6 +342,30 @@ Real leastPhi(const RigidBody& probe, const Pose& probePose, const RigidBody& ot
     return least;
 }
 
+// Orders `pairs` (ascending indices, as buildIslands leaves them) by level, ties by index: a stable
+// counting sort over levels 0 to `highest`, linear where a comparison sort was a few per cent of a
+// ten-thousand-body step.
+void sortByLevel(std::vector<std::uint32_t>& pairs, const std::vector<int>& pairLevels, int highest)
+{
+    thread_local std::vector<std::size_t> start;
+    thread_local std::vector<std::uint32_t> sorted;
+    start.assign(static_cast<std::size_t>(highest) + 2, 0);
+    for (const std::uint32_t k : pairs)
+    {
+        ++start[static_cast<std::size_t>(pairLevels[k]) + 1];
+    }
+    for (std::size_t level = 1; level < start.size(); ++level)
+    {
+        start[level] += start[level - 1];
+    }
+    sorted.resize(pairs.size());
+    for (const std::uint32_t k : pairs)
+    {
+        sorted[start[static_cast<std::size_t>(pairLevels[k])]++] = k;
+    }
+    pairs.swap(sorted); // sorted keeps the storage for the next island
+}
+
 } // namespace
 
 void WorldImpl::buildContactGraph(const StepOptions& options)
@@ -419,10 +443,7 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
                 {
-                    std::vector<std::uint32_t>& order = islands[i].pairs;
-                    std::sort(order.begin(), order.end(),
-                              [&](std::uint32_t l, std::uint32_t r)
-                              { return pairLevels[l] < pairLevels[r] || (pairLevels[l] == pairLevels[r] && l < r); });
+                    sortByLevel(islands[i].pairs, pairLevels, highest);
                     planLevels(islands[i], scratch[static_cast<std::size_t>(thread)]);
                 });
 }
