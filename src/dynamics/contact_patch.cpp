@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace impulse
@@ -151,6 +152,15 @@ struct PatchLeastSquares
     Eigen::VectorXd reached;
 };
 
+// Whether two matrices hold the same numbers bit for bit (so that factoring them would give the same
+// factors): the projected solve's warm start asks for the least squares of the very matrix the patch
+// solve before it has just factored, with other targets.
+template <class Matrix> bool sameBits(const Matrix& x, const Matrix& y)
+{
+    return x.rows() == y.rows() && x.cols() == y.cols() &&
+           std::memcmp(x.data(), y.data(), static_cast<std::size_t>(x.size()) * sizeof(typename Matrix::Scalar)) == 0;
+}
+
 // Fills A (3 rows per point, 6 columns per movable body) for solvePatchLeastSquares.
 template <class Matrix>
 void fillPatchMatrix(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
@@ -197,16 +207,21 @@ void solveThroughDecomposition(const RigidBody& body, const std::vector<PatchPoi
                                  kMaxRows == Eigen::Dynamic ? Eigen::Dynamic : std::max(kMaxRows, kMaxColumns), 1>;
     // kept per thread: a patch of the size of an earlier one reuses their storage
     thread_local Matrix a;
+    thread_local Matrix factored; // the matrix `decomposition` holds the factors of
     thread_local Eigen::CompleteOrthogonalDecomposition<Matrix> decomposition;
     thread_local Vector rhs;
     thread_local Vector leastNorm;
     thread_local Vector image;
     fillPatchMatrix(body, patch, lever, partnerLever, movable, a);
-    // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide them
-    // on W = A A^T, whose singular values are the squares of A's: relative to the largest, below the
-    // square root of W's round-off
-    decomposition.setThreshold(std::sqrt(static_cast<Real>(a.rows()) * std::numeric_limits<Real>::epsilon()));
-    decomposition.compute(a);
+    if (!sameBits(a, factored))
+    {
+        // W^+ = (A A^T)^+ = (A^+)^T A^+. Ranks are decided on A as a decomposition of W would decide
+        // them on W = A A^T, whose singular values are the squares of A's: relative to the largest,
+        // below the square root of W's round-off
+        decomposition.setThreshold(std::sqrt(static_cast<Real>(a.rows()) * std::numeric_limits<Real>::epsilon()));
+        decomposition.compute(a);
+        factored = a;
+    }
     // A^+ t, then (A^+)^T of that: the transposed solve applies the same factors in reverse. The
     // solves' temporaries take the type of their right-hand side, so t is copied into `Vector` first.
     rhs = target;
@@ -227,6 +242,7 @@ void solveThroughCoupling(const RigidBody& body, const std::vector<PatchPoint>& 
 {
     using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 48, 48>;
     thread_local Matrix coupling;
+    thread_local Matrix factored; // the matrix `factor` holds the factor of
     thread_local Eigen::LLT<Matrix> factor;
     const auto n = static_cast<Eigen::Index>(patch.size());
     coupling.resize(3 * n, 3 * n);
@@ -247,7 +263,11 @@ void solveThroughCoupling(const RigidBody& body, const std::vector<PatchPoint>& 
             coupling.block<3, 3>(3 * k, 3 * i) = block.transpose();
         }
     }
-    factor.compute(coupling);
+    if (!sameBits(coupling, factored))
+    {
+        factor.compute(coupling);
+        factored = coupling;
+    }
     result.impulses = factor.solve(target);
     result.reached = coupling * result.impulses;
 }
