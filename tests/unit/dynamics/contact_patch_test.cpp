@@ -156,6 +156,61 @@ TEST(ContactPatch, StickingSolveOfNearlySingularPatchesNeverAddsKineticEnergy)
     expectNoEnergyGained(&applyPatchImpulse, 11222026);
 }
 
+// The least-squares solves keep their factors for a next solve of the same matrix (the projected
+// solve's warm start after a failed sticking solve of the same patch). Reused factors must give what
+// factoring anew gives, bit for bit, and a matrix of the same size that differs in any bit must be
+// factored anew. Each trial builds one random patch several times. `reused` gets the sticking solve
+// right after `nudged` (the same patch with its body 1e-12 m aside: a matrix of the same size), and
+// then, when the patch does not stick, the projected solve, which reuses the sticking solve's
+// factors. `fresh` gets the projected solve alone, after `spacer` (the patch less a point: a matrix
+// of another size), so it cannot start from factors of any matrix of its size. The outcomes of
+// `fresh` and `reused` must agree to the last bit.
+TEST(ContactPatch, ReusedLeastSquaresFactorsGiveTheSameImpulsesBitForBit)
+{
+    std::mt19937_64 rng(20261202);
+    const PassSettings settings;
+    int compared = 0;
+    for (int trial = 0; trial < 2000; ++trial)
+    {
+        const std::mt19937_64 start = rng;
+        const auto build = [&]
+        {
+            std::mt19937_64 same = start;
+            return randomPatch(same);
+        };
+        RandomPatch reused = randomPatch(rng);
+        const Real eps = randomRestitution(rng);
+        RandomPatch fresh = build();
+        RandomPatch nudged = build();
+        nudged.bodies[0].predicted.position.x() += 1e-12;
+        RandomPatch spacer = build();
+        spacer.points.pop_back();
+
+        applyPatchImpulse(nudged.bodies[0], nudged.points, eps, settings);
+        if (applyPatchImpulse(reused.bodies[0], reused.points, eps, settings))
+        {
+            continue; // the patch stuck: there is no projected solve to compare
+        }
+        const bool reusedApplied = applyProjectedPatchImpulse(reused.bodies[0], reused.points, eps, settings);
+        applyPatchImpulse(spacer.bodies[0], spacer.points, eps, settings);
+        applyProjectedPatchImpulse(spacer.bodies[0], spacer.points, eps, settings);
+        EXPECT_EQ(applyProjectedPatchImpulse(fresh.bodies[0], fresh.points, eps, settings), reusedApplied)
+            << "trial " << trial;
+        ++compared;
+        for (std::size_t b = 0; b < fresh.bodies.size(); ++b)
+        {
+            for (int i = 0; i < 3; ++i)
+            {
+                ASSERT_EQ(reused.bodies[b].linearVelocity[i], fresh.bodies[b].linearVelocity[i])
+                    << "trial " << trial << ", body " << b;
+                ASSERT_EQ(reused.bodies[b].angularMomentum[i], fresh.bodies[b].angularMomentum[i])
+                    << "trial " << trial << ", body " << b;
+            }
+        }
+    }
+    EXPECT_GE(compared, 1000) << "too few patches reached the projected solve to test the reuse";
+}
+
 // Relative velocity of the body against its partner at a patch point, at the predicted poses.
 Vec3 relativeAt(const RigidBody& body, const PatchPoint& point)
 {
