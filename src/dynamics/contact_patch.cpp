@@ -385,6 +385,78 @@ bool solveThroughTwist(const RigidBody& body, const std::vector<PatchPoint>& pat
     return true;
 }
 
+// The same rigid-motion solve for a patch of two points (a box on an edge, an edge across an edge):
+// about their midpoint c, rho_1 = -rho_2 = h. J (V, W) = (V + W x h, V - W x h) has one null twist,
+// the turn (0, e) about the line through the points, e = h / |h|, and no other, so with P the 6 x 5
+// basis of the twists across it, (V, Q w) for Q = [q1 q2] orthonormal and orthogonal to e, B = J P
+// has full column rank and W = J K J^T = B (P^T K P) B^T. Then W^+ = B (B^T B)^-1 (P^T K P)^-1
+// (B^T B)^-1 B^T with B^T B = diag(2 1, 2 |h|^2 1): a 5 x 5 Cholesky factor where the decomposition
+// of A works on 6 x 12. Returns false, computing nothing, when the points are so close together
+// that the decomposition's rank decisions would treat them as one.
+bool solveThroughLineTwist(const RigidBody& body, const std::vector<PatchPoint>& patch, const RigidBody* partner,
+                           const Eigen::VectorXd& target, PatchLeastSquares& result)
+{
+    const Vec3 centre = 0.5 * (patch[0].contact.point + patch[1].contact.point);
+    const Vec3 half = 0.5 * (patch[0].contact.point - patch[1].contact.point); // rho_1; rho_2 = -rho_1
+    const Real halfSquared = half.squaredNorm();
+    // the turn about the line is the only null twist while |h| is well above round-off of the levers
+    Real reach = body.immovable() ? 0.0 : (centre - body.predicted.position).squaredNorm();
+    if (partner != nullptr)
+    {
+        reach = std::max(reach, (centre - partner->predicted.position).squaredNorm());
+    }
+    if (!(halfSquared > 1e-6 * reach) || !(halfSquared > 0.0))
+    {
+        return false;
+    }
+    Mat6 mobility = Mat6::Zero();
+    if (!body.immovable())
+    {
+        addMobility(body, centre, mobility);
+    }
+    if (partner != nullptr)
+    {
+        addMobility(*partner, centre, mobility);
+    }
+    const Vec3 along = half / std::sqrt(halfSquared);
+    Eigen::Matrix<Real, 3, 2> across;
+    across.col(0) = along.unitOrthogonal();
+    across.col(1) = along.cross(across.col(0));
+    Eigen::Matrix<Real, 6, 5> basis = Eigen::Matrix<Real, 6, 5>::Zero(); // P
+    basis.topLeftCorner<3, 3>().setIdentity();
+    basis.bottomRightCorner<3, 2>() = across;
+    const Eigen::LLT<Eigen::Matrix<Real, 5, 5>> mobilityFactor(basis.transpose() * mobility * basis);
+    if (mobilityFactor.info() != Eigen::Success)
+    {
+        return false;
+    }
+    // (B^T B)^-1 of a reduced wrench or twist
+    const auto unspread = [&](Eigen::Matrix<Real, 5, 1> x)
+    {
+        x.head<3>() /= 2.0;
+        x.tail<2>() /= 2.0 * halfSquared;
+        return x;
+    };
+    const Vec3 t0 = target.segment<3>(0);
+    const Vec3 t1 = target.segment<3>(3);
+    Vec6 wrench; // J^T t
+    wrench << t0 + t1, half.cross(t0 - t1);
+    const Eigen::Matrix<Real, 5, 1> reduced = basis.transpose() * wrench;
+    const Vec6 spreadTwist = basis * unspread(mobilityFactor.solve(unspread(reduced)));
+    const Vec3 turn = spreadTwist.tail<3>().cross(half);
+    const Vec3 j0 = spreadTwist.head<3>() + turn;
+    const Vec3 j1 = spreadTwist.head<3>() - turn;
+    result.impulses.resize(6);
+    result.impulses << j0, j1;
+    Vec6 applied; // J^T j
+    applied << j0 + j1, half.cross(j0 - j1);
+    const Vec6 twist = mobility * applied;
+    const Vec3 turned = twist.tail<3>().cross(half);
+    result.reached.resize(6);
+    result.reached << twist.head<3>() + turned, twist.head<3>() - turned;
+    return true;
+}
+
 void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
                             const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
                             PatchLeastSquares& result)
@@ -404,10 +476,19 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
         }
     }
     const std::size_t partners = movable.size() - (body.immovable() ? 0 : 1);
-    if (partners <= 1 && !movable.empty() &&
-        solveThroughTwist(body, patch, partners == 1 ? movable.back() : nullptr, target, result))
+    // the rigid-motion forms need one relative motion at every point: each point on a body that does
+    // not move, or each on the one movable partner (a box on the ground and leaning on a box has two)
+    const bool oneMotion =
+        std::all_of(patch.begin(), patch.end(),
+                    [&](const PatchPoint& point) { return point.other->immovable() == (partners == 0); });
+    if (partners <= 1 && !movable.empty() && oneMotion)
     {
-        return;
+        const RigidBody* partner = partners == 1 ? movable.back() : nullptr;
+        if (patch.size() == 2 ? solveThroughLineTwist(body, patch, partner, target, result)
+                              : solveThroughTwist(body, patch, partner, target, result))
+        {
+            return;
+        }
     }
     const bool partnerPerPoint =
         movable.size() == patch.size() + (body.immovable() ? 0 : 1) &&
@@ -476,9 +557,11 @@ void applyToPatch(RigidBody& body, const std::vector<PatchPoint>& patch, const s
 
 bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, const PassSettings& settings)
 {
-    // With several movable partners the re-spreading below would shift load between them, and
+    // With several movable partners, or a movable partner besides bodies that do not move (a lintel
+    // on a static block and a free one), the re-spreading below would shift load between them, and
     // their motion with it: that case is left to the projected solve, which moves them all.
     const RigidBody* movablePartner = nullptr;
+    bool touchesImmovable = false;
     for (const PatchPoint& point : patch)
     {
         if (!point.other->immovable())
@@ -489,6 +572,11 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
             }
             movablePartner = point.other;
         }
+        touchesImmovable = touchesImmovable || point.other->immovable();
+    }
+    if (movablePartner != nullptr && touchesImmovable)
+    {
+        return false;
     }
     const auto n = static_cast<Eigen::Index>(patch.size());
     // kept per thread (here and in the projected solve): a patch of a size seen before allocates

@@ -310,6 +310,125 @@ TEST(ContactPatch, AFaceLandingFlatMeetsEveryPointsTargetAtOnce)
     }
 }
 
+// A body of a box's inertia (m/150 to m/50 per axis, a 0.2 m cube has m/150), falling at 1-3 m/s,
+// sliding and turning slowly enough that even the ramp's first sweep presses on every point.
+RigidBody fallingBoxLikeBody(std::mt19937_64& rng, const Vec3& position)
+{
+    RigidBody body = randomBody(rng, position, true);
+    body.principalInertia =
+        body.mass * Vec3(Uniform(0.003, 0.01)(rng), Uniform(0.003, 0.01)(rng), Uniform(0.003, 0.01)(rng));
+    body.invPrincipalInertia = body.principalInertia.cwiseInverse();
+    body.invInertiaWorld = body.rotation * body.invPrincipalInertia.asDiagonal() * body.rotation.transpose();
+    body.linearVelocity = Vec3(Uniform(-0.01, 0.01)(rng), Uniform(-0.01, 0.01)(rng), Uniform(-3.0, -1.0)(rng));
+    body.angularVelocity = Vec3(Uniform(-0.02, 0.02)(rng), Uniform(-0.02, 0.02)(rng), Uniform(-0.02, 0.02)(rng));
+    body.angularMomentum = body.invInertiaWorld.inverse() * body.angularVelocity;
+    return body;
+}
+
+// A support at rest below the patch: static, or dynamic with a box's inertia.
+RigidBody supportAtRest(std::mt19937_64& rng, const Vec3& position, bool dynamic)
+{
+    RigidBody support = fallingBoxLikeBody(rng, position);
+    support.dynamic = dynamic;
+    support.linearVelocity.setZero();
+    support.angularVelocity.setZero();
+    support.angularMomentum.setZero();
+    return support;
+}
+
+// Applies the sticking solve to a patch whose points all face up (friction high enough for any
+// sticking impulse) and checks that every point reaches its target: u_n' = -eps u_n for eps >= 0,
+// |eps| times the patch's mean approach for the contact ramp's eps < 0, and no slip.
+void expectEveryTargetMet(RigidBody& body, const std::vector<PatchPoint>& patch, Real eps, int trial)
+{
+    std::vector<Real> approach;
+    Real scale = 0.0;
+    Real mean = 0.0;
+    for (const PatchPoint& point : patch)
+    {
+        approach.push_back(relativeAt(body, point).z());
+        scale = std::max(scale, relativeAt(body, point).norm());
+        mean += approach.back() / static_cast<Real>(patch.size());
+    }
+    ASSERT_TRUE(applyPatchImpulse(body, patch, eps, PassSettings{})) << "trial " << trial;
+    for (std::size_t k = 0; k < patch.size(); ++k)
+    {
+        // the solve is a few dozen products of order-one numbers: round-off far below 1e-12
+        const Real target = eps >= 0.0 ? -eps * approach[k] : -eps * mean;
+        const Vec3 after = relativeAt(body, patch[k]);
+        ASSERT_NEAR(after.z(), target, 1e-12 * scale) << "trial " << trial << ", point " << k;
+        ASSERT_NEAR(after.x(), 0.0, 1e-12 * scale) << "trial " << trial << ", point " << k;
+        ASSERT_NEAR(after.y(), 0.0, 1e-12 * scale) << "trial " << trial << ", point " << k;
+    }
+}
+
+PatchPoint upwardPoint(const Vec3& spot, RigidBody& support)
+{
+    PatchPoint point;
+    point.other = &support;
+    point.contact.point = spot;
+    point.contact.normal = Vec3::UnitZ();
+    point.friction = 100.0;
+    return point;
+}
+
+// A body coming down onto an edge: two points, the ends of a horizontal edge below its centre of
+// mass (the two-point rigid-motion solve). Along a line the targets of a rigid approach are
+// themselves a rigid motion, so the sticking solve must meet both.
+TEST(ContactPatch, AnEdgeLandingMeetsBothPointsTargetsAtOnce)
+{
+    std::mt19937_64 rng(20261203);
+    for (int trial = 0; trial < 2000; ++trial)
+    {
+        const Vec3 centre(Uniform(-0.01, 0.01)(rng), Uniform(-0.01, 0.01)(rng), 0.0);
+        std::deque<RigidBody> bodies;
+        bodies.push_back(fallingBoxLikeBody(rng, Vec3(0.0, 0.0, 0.1)));
+        bodies.push_back(supportAtRest(rng, centre - Vec3(0.0, 0.0, 0.1), Uniform(0.0, 1.0)(rng) < 0.5));
+        const Real angle = Uniform(0.0, 2.0 * M_PI)(rng);
+        const Vec3 half = Uniform(0.02, 0.15)(rng) * Vec3(std::cos(angle), std::sin(angle), 0.0);
+        const std::vector<PatchPoint> patch{upwardPoint(centre + half, bodies[1]),
+                                            upwardPoint(centre - half, bodies[1])};
+        expectEveryTargetMet(bodies[0], patch, Uniform(-0.9, 1.0)(rng), trial);
+    }
+}
+
+// A lintel coming down across two supports, one static and one dynamic at rest, two points on each.
+// The points move with two relative motions, not one: re-spreading the load as over one rigid
+// contact would shift it between the supports and miss the free one's target, so the sticking solve
+// must leave the patch alone, and the projected solve, which moves both, must stop every point.
+TEST(ContactPatch, ALintelOnAStaticAndAMovableSupportIsStoppedAtEveryPoint)
+{
+    std::mt19937_64 rng(3122026);
+    const PassSettings settings;
+    for (int trial = 0; trial < 1000; ++trial)
+    {
+        const Real span = Uniform(0.1, 0.3)(rng);
+        const Real width = Uniform(0.02, 0.1)(rng);
+        std::deque<RigidBody> bodies;
+        bodies.push_back(fallingBoxLikeBody(rng, Vec3(0.0, 0.0, 0.1)));
+        bodies.push_back(supportAtRest(rng, Vec3(-span, 0.0, -0.1), false));
+        bodies.push_back(supportAtRest(rng, Vec3(span, 0.0, -0.1), true));
+        std::vector<PatchPoint> patch;
+        for (const Real side : {-1.0, 1.0})
+        {
+            RigidBody& support = bodies[side < 0.0 ? 1 : 2];
+            patch.push_back(upwardPoint(Vec3(side * span, -width, 0.0), support));
+            patch.push_back(upwardPoint(Vec3(side * span, width, 0.0), support));
+        }
+        RigidBody& lintel = bodies[0];
+        const Vec3 velocity = lintel.linearVelocity;
+        ASSERT_FALSE(applyPatchImpulse(lintel, patch, 0.0, settings)) << "trial " << trial;
+        ASSERT_EQ(lintel.linearVelocity, velocity) << "trial " << trial;
+        const Real scale = velocity.norm();
+        ASSERT_TRUE(applyProjectedPatchImpulse(lintel, patch, 0.0, settings)) << "trial " << trial;
+        for (std::size_t k = 0; k < patch.size(); ++k)
+        {
+            // the solve iterates to 1e-9 of the largest load
+            EXPECT_NEAR(relativeAt(lintel, patch[k]).norm(), 0.0, 1e-8 * scale) << "trial " << trial << ", point " << k;
+        }
+    }
+}
+
 // A ball coming straight down into the hollow of three balls of its mass, each static or free,
 // one point on each, friction high enough to hold it: the projected solve must stop the ball
 // against every partner, in the normal and the tangent directions.
