@@ -295,6 +295,63 @@ void addMobility(const RigidBody& b, const Vec3& centre, Mat6& mobility)
     mobility.bottomRightCorner<3, 3>() += invInertia;
 }
 
+// K of a patch's one relative motion about `centre`: the body's mobility plus its partner's, if
+// either moves.
+Mat6 patchMobility(const RigidBody& body, const RigidBody* partner, const Vec3& centre)
+{
+    Mat6 mobility = Mat6::Zero();
+    if (!body.immovable())
+    {
+        addMobility(body, centre, mobility);
+    }
+    if (partner != nullptr)
+    {
+        addMobility(*partner, centre, mobility);
+    }
+    return mobility;
+}
+
+// How the points of a patch move relative to its body: the rigid-motion solves and the sticking
+// solve's load re-spread need one relative motion at every point.
+struct PatchMotion
+{
+    enum class Kind
+    {
+        AllImmovable, // every point on a static or frozen body
+        OnePartner,   // every point on the same movable partner
+        Several,      // two movable partners, or one besides bodies that do not move
+    };
+    Kind kind = Kind::AllImmovable;
+    const RigidBody* partner = nullptr; // the movable partner, when there is exactly one
+};
+
+PatchMotion classifyPatchMotion(const std::vector<PatchPoint>& patch)
+{
+    PatchMotion motion;
+    bool touchesImmovable = false;
+    for (const PatchPoint& point : patch)
+    {
+        if (point.other->immovable())
+        {
+            touchesImmovable = true;
+        }
+        else if (motion.partner == nullptr)
+        {
+            motion.partner = point.other;
+        }
+        else if (motion.partner != point.other)
+        {
+            motion.kind = PatchMotion::Kind::Several;
+            return motion;
+        }
+    }
+    if (motion.partner != nullptr)
+    {
+        motion.kind = touchesImmovable ? PatchMotion::Kind::Several : PatchMotion::Kind::OnePartner;
+    }
+    return motion;
+}
+
 // j = W^+ t for a patch whose points all touch static or frozen bodies or one and the same movable
 // partner (a box on the ground, a cube on a cube, any body in the shock sweep). The relative velocity
 // the impulses give is then a rigid motion: a twist (V, W) about the points' centroid c gives
@@ -334,15 +391,7 @@ bool solveThroughTwist(const RigidBody& body, const std::vector<PatchPoint>& pat
         return false;
     }
     const Eigen::LLT<Mat3> spreadFactor(spread);
-    Mat6 mobility = Mat6::Zero();
-    if (!body.immovable())
-    {
-        addMobility(body, centre, mobility);
-    }
-    if (partner != nullptr)
-    {
-        addMobility(*partner, centre, mobility);
-    }
+    const Mat6 mobility = patchMobility(body, partner, centre);
     const Eigen::LLT<Mat6> mobilityFactor(mobility);
     if (mobilityFactor.info() != Eigen::Success || spreadFactor.info() != Eigen::Success)
     {
@@ -409,15 +458,7 @@ bool solveThroughLineTwist(const RigidBody& body, const std::vector<PatchPoint>&
     {
         return false;
     }
-    Mat6 mobility = Mat6::Zero();
-    if (!body.immovable())
-    {
-        addMobility(body, centre, mobility);
-    }
-    if (partner != nullptr)
-    {
-        addMobility(*partner, centre, mobility);
-    }
+    const Mat6 mobility = patchMobility(body, partner, centre);
     const Vec3 along = half / std::sqrt(halfSquared);
     Eigen::Matrix<Real, 3, 2> across;
     across.col(0) = along.unitOrthogonal();
@@ -475,15 +516,12 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
             movable.push_back(point.other);
         }
     }
-    const std::size_t partners = movable.size() - (body.immovable() ? 0 : 1);
-    // the rigid-motion forms need one relative motion at every point: each point on a body that does
-    // not move, or each on the one movable partner (a box on the ground and leaning on a box has two)
-    const bool oneMotion =
-        std::all_of(patch.begin(), patch.end(),
-                    [&](const PatchPoint& point) { return point.other->immovable() == (partners == 0); });
-    if (partners <= 1 && !movable.empty() && oneMotion)
+    // the rigid-motion forms need one relative motion at every point (a box on the ground and
+    // leaning on a box has two)
+    const PatchMotion motion = classifyPatchMotion(patch);
+    if (motion.kind != PatchMotion::Kind::Several && !movable.empty())
     {
-        const RigidBody* partner = partners == 1 ? movable.back() : nullptr;
+        const RigidBody* partner = motion.partner;
         if (patch.size() == 2 ? solveThroughLineTwist(body, patch, partner, target, result)
                               : solveThroughTwist(body, patch, partner, target, result))
         {
@@ -560,21 +598,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     // With several movable partners, or a movable partner besides bodies that do not move (a lintel
     // on a static block and a free one), the re-spreading below would shift load between them, and
     // their motion with it: that case is left to the projected solve, which moves them all.
-    const RigidBody* movablePartner = nullptr;
-    bool touchesImmovable = false;
-    for (const PatchPoint& point : patch)
-    {
-        if (!point.other->immovable())
-        {
-            if (movablePartner != nullptr && movablePartner != point.other)
-            {
-                return false;
-            }
-            movablePartner = point.other;
-        }
-        touchesImmovable = touchesImmovable || point.other->immovable();
-    }
-    if (movablePartner != nullptr && touchesImmovable)
+    if (classifyPatchMotion(patch).kind == PatchMotion::Kind::Several)
     {
         return false;
     }
