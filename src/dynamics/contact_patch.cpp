@@ -21,6 +21,7 @@
 #include "dynamics/integrate.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -67,21 +68,53 @@ bool distributeOverPatch(const std::vector<PatchPoint>& patch, const Eigen::Vect
     const Real twist = moment.dot(normal);
     const Vec3 tilt = moment - twist * normal;
 
-    // loads: their sum is the normal force, their moment about the centroid the tilting moment
-    // kept per thread, as in the least-squares solve: a patch of a size seen before allocates nothing
-    thread_local Eigen::Matrix4Xd equations;
-    thread_local Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix4Xd> decomposition;
-    thread_local Eigen::VectorXd loads;
-    equations.resize(4, static_cast<Eigen::Index>(n));
+    // Loads of least norm whose sum is the normal force and whose moment about the centroid is the
+    // tilting moment. The arms a_k = (p_k - o) x n lie in the plane across n and sum to zero about
+    // the centroid, so the equations split: l_k = N / n + a_k . G^+ tilt, with G = sum a_k a_k^T
+    // a 2 x 2 matrix in a basis (u, v) of that plane. G has rank 1 when the points lie on a line (a
+    // cube on an edge); the part of the tilt across the line then has no loads to carry it, and the
+    // residual check below refuses the patch.
+    const Vec3 u = normal.unitOrthogonal();
+    const Vec3 v = normal.cross(u);
+    thread_local std::vector<Eigen::Vector2d> arms;
+    arms.resize(n);
+    Eigen::Matrix2d spreadOfArms = Eigen::Matrix2d::Zero(); // G
     for (std::size_t k = 0; k < n; ++k)
     {
         const Vec3 arm = (patch[k].contact.point - origin).cross(normal);
-        equations.col(static_cast<Eigen::Index>(k)) << 1.0, arm.x(), arm.y(), arm.z();
+        arms[k] = Eigen::Vector2d(arm.dot(u), arm.dot(v));
+        spreadOfArms += arms[k] * arms[k].transpose();
     }
-    const Eigen::Vector4d required(normalForce, tilt.x(), tilt.y(), tilt.z());
-    decomposition.compute(equations);
-    loads = decomposition.solve(required);
-    if (!loads.allFinite() || (equations * loads - required).norm() > 1e-9 * required.norm())
+    const Eigen::Vector2d tiltInPlane(tilt.dot(u), tilt.dot(v));
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+    eigen.computeDirect(spreadOfArms);
+    const Real largest = eigen.eigenvalues()(1);
+    Eigen::Vector2d perArm = Eigen::Vector2d::Zero(); // G^+ tilt
+    for (int i = 0; i < 2; ++i)
+    {
+        // directions in which the arms spread less than 1e-6 of their reach carry no tilt
+        const Real lambda = eigen.eigenvalues()(i);
+        if (largest > 0.0 && lambda > 1e-12 * largest)
+        {
+            const Eigen::Vector2d axis = eigen.eigenvectors().col(i);
+            perArm += axis * (axis.dot(tiltInPlane) / lambda);
+        }
+    }
+    thread_local Eigen::VectorXd loads;
+    loads.resize(static_cast<Eigen::Index>(n));
+    Real sum = 0.0;
+    Eigen::Vector2d carried = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        const Real load = normalForce / static_cast<Real>(n) + arms[k].dot(perArm);
+        loads[static_cast<Eigen::Index>(k)] = load;
+        sum += load;
+        carried += load * arms[k];
+    }
+    const Real residual = std::sqrt((sum - normalForce) * (sum - normalForce) + (carried - tiltInPlane).squaredNorm() +
+                                    tilt.dot(normal) * tilt.dot(normal));
+    const Real required = std::sqrt(normalForce * normalForce + tilt.squaredNorm());
+    if (!loads.allFinite() || !(residual <= 1e-9 * required))
     {
         return false;
     }
