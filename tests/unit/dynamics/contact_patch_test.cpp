@@ -281,6 +281,23 @@ PatchPoint upwardPoint(const Vec3& spot, RigidBody& support)
     return point;
 }
 
+// A box-like body falling onto a support at rest, static or dynamic at even odds, the patch to be
+// centred within a centimetre of the foot of the body's centre of mass.
+struct Landing
+{
+    Vec3 centre;
+    std::deque<RigidBody> bodies; // the falling body, then its support
+};
+
+Landing landingOnSupport(std::mt19937_64& rng)
+{
+    Landing landing;
+    landing.centre = Vec3(Uniform(-0.01, 0.01)(rng), Uniform(-0.01, 0.01)(rng), 0.0);
+    landing.bodies.push_back(fallingBoxLikeBody(rng, Vec3(0.0, 0.0, 0.1)));
+    landing.bodies.push_back(supportAtRest(rng, landing.centre - Vec3(0.0, 0.0, 0.1), Uniform(0.0, 1.0)(rng) < 0.5));
+    return landing;
+}
+
 // A body coming down flat onto a face: the corners of a rectangle around the foot of its centre of
 // mass and up to five points inside it, normals straight up, the partner static or dynamic, friction
 // high enough for any sticking impulse. The targets come from a rigid motion (the normal approach
@@ -292,10 +309,9 @@ TEST(ContactPatch, AFaceLandingFlatMeetsEveryPointsTargetAtOnce)
     std::mt19937_64 rng(20261201);
     for (int trial = 0; trial < 2000; ++trial)
     {
-        const Vec3 centre(Uniform(-0.01, 0.01)(rng), Uniform(-0.01, 0.01)(rng), 0.0);
-        std::deque<RigidBody> bodies;
-        bodies.push_back(fallingBoxLikeBody(rng, Vec3(0.0, 0.0, 0.1)));
-        bodies.push_back(supportAtRest(rng, centre - Vec3(0.0, 0.0, 0.1), Uniform(0.0, 1.0)(rng) < 0.5));
+        Landing landing = landingOnSupport(rng);
+        const Vec3& centre = landing.centre;
+        std::deque<RigidBody>& bodies = landing.bodies;
         const Vec3 half(Uniform(0.05, 0.1)(rng), Uniform(0.05, 0.1)(rng), 0.0);
         std::vector<Vec3> spots;
         for (const Real sx : {-1.0, 1.0})
@@ -335,10 +351,9 @@ TEST(ContactPatch, AnEdgeLandingMeetsBothPointsTargetsAtOnce)
     std::mt19937_64 rng(20261203);
     for (int trial = 0; trial < 2000; ++trial)
     {
-        const Vec3 centre(Uniform(-0.01, 0.01)(rng), Uniform(-0.01, 0.01)(rng), 0.0);
-        std::deque<RigidBody> bodies;
-        bodies.push_back(fallingBoxLikeBody(rng, Vec3(0.0, 0.0, 0.1)));
-        bodies.push_back(supportAtRest(rng, centre - Vec3(0.0, 0.0, 0.1), Uniform(0.0, 1.0)(rng) < 0.5));
+        Landing landing = landingOnSupport(rng);
+        const Vec3& centre = landing.centre;
+        std::deque<RigidBody>& bodies = landing.bodies;
         const Real angle = Uniform(0.0, 2.0 * M_PI)(rng);
         const Vec3 half = Uniform(0.02, 0.15)(rng) * Vec3(std::cos(angle), std::sin(angle), 0.0);
         const std::vector<PatchPoint> patch{upwardPoint(centre + half, bodies[1]),
