@@ -310,15 +310,13 @@ TEST(ContactPatch, AFaceLandingFlatMeetsEveryPointsTargetAtOnce)
     for (int trial = 0; trial < 2000; ++trial)
     {
         Landing landing = landingOnSupport(rng);
-        const Vec3& centre = landing.centre;
-        std::deque<RigidBody>& bodies = landing.bodies;
         const Vec3 half(Uniform(0.05, 0.1)(rng), Uniform(0.05, 0.1)(rng), 0.0);
         std::vector<Vec3> spots;
         for (const Real sx : {-1.0, 1.0})
         {
             for (const Real sy : {-1.0, 1.0})
             {
-                spots.push_back(centre + Vec3(sx * half.x(), sy * half.y(), 0.0));
+                spots.push_back(landing.centre + Vec3(sx * half.x(), sy * half.y(), 0.0));
             }
         }
         // more points inside, in pairs about the centre (the loads of least norm are linear over
@@ -327,19 +325,19 @@ TEST(ContactPatch, AFaceLandingFlatMeetsEveryPointsTargetAtOnce)
         for (int k = 0; k < pairs; ++k)
         {
             const Vec3 offset(Uniform(-1.0, 1.0)(rng) * half.x(), Uniform(-1.0, 1.0)(rng) * half.y(), 0.0);
-            spots.push_back(centre + offset);
-            spots.push_back(centre - offset);
+            spots.push_back(landing.centre + offset);
+            spots.push_back(landing.centre - offset);
         }
         if (Uniform(0.0, 1.0)(rng) < 0.5)
         {
-            spots.push_back(centre);
+            spots.push_back(landing.centre);
         }
         std::vector<PatchPoint> patch;
         for (const Vec3& spot : spots)
         {
-            patch.push_back(upwardPoint(spot, bodies[1]));
+            patch.push_back(upwardPoint(spot, landing.bodies[1]));
         }
-        expectEveryTargetMet(bodies[0], patch, Uniform(-0.9, 1.0)(rng), trial);
+        expectEveryTargetMet(landing.bodies[0], patch, Uniform(-0.9, 1.0)(rng), trial);
     }
 }
 
@@ -352,13 +350,11 @@ TEST(ContactPatch, AnEdgeLandingMeetsBothPointsTargetsAtOnce)
     for (int trial = 0; trial < 2000; ++trial)
     {
         Landing landing = landingOnSupport(rng);
-        const Vec3& centre = landing.centre;
-        std::deque<RigidBody>& bodies = landing.bodies;
         const Real angle = Uniform(0.0, 2.0 * M_PI)(rng);
         const Vec3 half = Uniform(0.02, 0.15)(rng) * Vec3(std::cos(angle), std::sin(angle), 0.0);
-        const std::vector<PatchPoint> patch{upwardPoint(centre + half, bodies[1]),
-                                            upwardPoint(centre - half, bodies[1])};
-        expectEveryTargetMet(bodies[0], patch, Uniform(-0.9, 1.0)(rng), trial);
+        const std::vector<PatchPoint> patch{upwardPoint(landing.centre + half, landing.bodies[1]),
+                                            upwardPoint(landing.centre - half, landing.bodies[1])};
+        expectEveryTargetMet(landing.bodies[0], patch, Uniform(-0.9, 1.0)(rng), trial);
     }
 }
 
