@@ -531,9 +531,10 @@ bool solveThroughLineTwist(const RigidBody& body, const std::vector<PatchPoint>&
     return true;
 }
 
-void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const std::vector<Vec3>& lever,
-                            const std::vector<Vec3>& partnerLever, const Eigen::VectorXd& target,
-                            PatchLeastSquares& result)
+// `motion` is classifyPatchMotion(patch), which the callers have already decided on.
+void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>& patch, const PatchMotion& motion,
+                            const std::vector<Vec3>& lever, const std::vector<Vec3>& partnerLever,
+                            const Eigen::VectorXd& target, PatchLeastSquares& result)
 {
     // the movable bodies, the patch's body first: each owns six columns of A
     thread_local std::vector<const RigidBody*> movable;
@@ -551,7 +552,6 @@ void solvePatchLeastSquares(const RigidBody& body, const std::vector<PatchPoint>
     }
     // the rigid-motion forms need one relative motion at every point (a box on the ground and
     // leaning on a box has two)
-    const PatchMotion motion = classifyPatchMotion(patch);
     if (motion.kind != PatchMotion::Kind::Several && !movable.empty())
     {
         const RigidBody* partner = motion.partner;
@@ -631,7 +631,8 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
     // With several movable partners, or a movable partner besides bodies that do not move (a lintel
     // on a static block and a free one), the re-spreading below would shift load between them, and
     // their motion with it: that case is left to the projected solve, which moves them all.
-    if (classifyPatchMotion(patch).kind == PatchMotion::Kind::Several)
+    const PatchMotion motion = classifyPatchMotion(patch);
+    if (motion.kind == PatchMotion::Kind::Several)
     {
         return false;
     }
@@ -665,7 +666,7 @@ bool applyPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& patch, Re
         target.segment<3>(3 * static_cast<Eigen::Index>(k)) = keep[k] * patch[k].contact.normal - velocity[k];
     }
     thread_local PatchLeastSquares leastSquares;
-    solvePatchLeastSquares(body, patch, lever, otherLever, target, leastSquares);
+    solvePatchLeastSquares(body, patch, motion, lever, otherLever, target, leastSquares);
     const Eigen::VectorXd& solved = leastSquares.impulses;
     // Reachable: the least-squares solution meets the targets to 1e-6 of their size, plus round-off
     // (1e-12) of the velocities involved. Exactly consistent for eps = 0; for eps != 0 a patch tilted
@@ -890,7 +891,7 @@ bool applyProjectedPatchImpulse(RigidBody& body, const std::vector<PatchPoint>& 
             target.segment<3>(3 * static_cast<Eigen::Index>(i)) = rows[i].keep * rows[i].normal - relative(rows[i]);
         }
         thread_local PatchLeastSquares leastSquares;
-        solvePatchLeastSquares(body, patch, levers, partnerLevers, target, leastSquares);
+        solvePatchLeastSquares(body, patch, classifyPatchMotion(patch), levers, partnerLevers, target, leastSquares);
         const Eigen::VectorXd& start = leastSquares.impulses;
         if (start.allFinite())
         {
