@@ -36,16 +36,28 @@ struct FacePolygon
     }
 };
 
-// Clips a convex polygon to the half-space {p : normal . p <= offset}.
-FacePolygon clip(const FacePolygon& polygon, const Vec3& normal, Real offset)
+// Clips a convex polygon to the half-space {p : normal . p <= offset}, into `result`. Each corner's
+// distance to the plane is worked out once, and the walk steps to the next corner without a
+// division: the clip runs four times per face contact at every re-detection.
+void clip(const FacePolygon& polygon, const Vec3& normal, Real offset, FacePolygon& result)
 {
-    FacePolygon result;
+    result.size = 0;
+    if (polygon.size == 0)
+    {
+        return;
+    }
+    std::array<Real, 16> distance;
     for (std::size_t i = 0; i < polygon.size; ++i)
     {
+        distance[i] = normal.dot(polygon.corners[i]) - offset;
+    }
+    for (std::size_t i = 0; i < polygon.size; ++i)
+    {
+        const std::size_t next = i + 1 == polygon.size ? 0 : i + 1;
         const Vec3& p = polygon.corners[i];
-        const Vec3& q = polygon.corners[(i + 1) % polygon.size];
-        const Real dp = normal.dot(p) - offset;
-        const Real dq = normal.dot(q) - offset;
+        const Vec3& q = polygon.corners[next];
+        const Real dp = distance[i];
+        const Real dq = distance[next];
         if (dp <= 0.0)
         {
             result.add(p);
@@ -55,7 +67,6 @@ FacePolygon clip(const FacePolygon& polygon, const Vec3& normal, Real offset)
             result.add(p + (dp / (dp - dq)) * (q - p));
         }
     }
-    return result;
 }
 
 // Face contact: `reference` owns the face with outward normal `normal` (pointing at `incident`).
@@ -93,6 +104,7 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
     polygon.add(faceCentre + du - dv);
 
     // clip to the four side planes of the reference face
+    FacePolygon clipped;
     for (int k = 0; k < 3 && polygon.size > 0; ++k)
     {
         if (k == referenceAxis)
@@ -101,8 +113,8 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
         }
         const Vec3 side = reference.axes.col(k);
         const Real centre = side.dot(reference.centre);
-        polygon = clip(polygon, side, centre + reference.half[k]);
-        polygon = clip(polygon, -side, -centre + reference.half[k]);
+        clip(polygon, side, centre + reference.half[k], clipped);
+        clip(clipped, -side, -centre + reference.half[k], polygon);
     }
 
     const Real faceOffset = normal.dot(reference.centre) + reference.half[referenceAxis];
