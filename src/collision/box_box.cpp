@@ -24,7 +24,8 @@ struct OrientedBox
 // dropped then, which only thins out a patch that is already redundant.
 struct FacePolygon
 {
-    std::array<Vec3, 16> corners;
+    static constexpr std::size_t kCapacity = 16;
+    std::array<Vec3, kCapacity> corners;
     std::size_t size = 0;
 
     void add(const Vec3& corner)
@@ -42,11 +43,7 @@ struct FacePolygon
 void clip(const FacePolygon& polygon, const Vec3& normal, Real offset, FacePolygon& result)
 {
     result.size = 0;
-    if (polygon.size == 0)
-    {
-        return;
-    }
-    std::array<Real, 16> distance;
+    std::array<Real, FacePolygon::kCapacity> distance;
     for (std::size_t i = 0; i < polygon.size; ++i)
     {
         distance[i] = normal.dot(polygon.corners[i]) - offset;
