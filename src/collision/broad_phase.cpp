@@ -140,18 +140,21 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     {
         return;
     }
-    Real cell = 0.0;
+    Real cellSize = 0.0;
     Vec3 origin = m_bounds[m_dynamic[0]].lower;
     for (const std::uint32_t d : m_dynamic)
     {
-        cell = std::max(cell, (m_bounds[d].upper - m_bounds[d].lower).maxCoeff());
+        cellSize = std::max(cellSize, (m_bounds[d].upper - m_bounds[d].lower).maxCoeff());
         origin = origin.cwiseMin(m_bounds[d].lower);
     }
-    if (!(cell > 0.0) || !std::isfinite(cell))
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
     {
-        cell = 1.0;
+        cellSize = 1.0;
     }
-    const Real inverse = 1.0 / cell;
+    // a little larger than the largest box, so that round-off in the cell coordinates never puts
+    // the lower corners of two touching boxes two cells apart
+    cellSize *= 1.0 + 1e-6;
+    const Real inverse = 1.0 / cellSize;
     const auto cellOf = [&](const Vec3& p)
     {
         return std::array<std::int64_t, 3>{cellCoordinate(p.x(), origin.x(), inverse),
@@ -159,27 +162,22 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
                                            cellCoordinate(p.z(), origin.z(), inverse)};
     };
 
-    // every cell a box touches (at most two per axis), hashed into buckets
+    // Each box goes into the one cell that holds its lower corner. A box spans at most a cell per
+    // axis, so two boxes that overlap have lower corners in the same or in neighbouring cells: each
+    // body is compared with the later bodies of its own cell and with the bodies of the 13
+    // neighbours on one side, which sees every such pair exactly once.
     std::size_t buckets = 1;
-    while (buckets < 4 * m_dynamic.size())
+    while (buckets < 2 * m_dynamic.size())
     {
         buckets *= 2;
     }
+    const auto bucketOf = [&](const std::array<std::int64_t, 3>& cell)
+    { return mixCell(cell[0], cell[1], cell[2]) & (buckets - 1); };
     m_entries.clear();
     for (const std::uint32_t d : m_dynamic)
     {
-        const auto lo = cellOf(m_bounds[d].lower);
-        const auto hi = cellOf(m_bounds[d].upper);
-        for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        {
-            for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-            {
-                for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-                {
-                    m_entries.push_back({mixCell(x, y, z) & (buckets - 1), {x, y, z}, d});
-                }
-            }
-        }
+        const auto cell = cellOf(m_bounds[d].lower);
+        m_entries.push_back({bucketOf(cell), cell, d});
     }
     // counting sort by bucket, stable: within a bucket, bodies stay in ascending order
     m_bucketStart.assign(buckets + 1, 0);
@@ -197,24 +195,45 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     {
         m_sorted[m_bucketFill[entry.bucket]++] = entry;
     }
-    for (std::size_t b = 0; b < buckets; ++b)
+    const auto report = [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({std::min(i, j), std::max(i, j)}); };
+    // the neighbours on one side: the offsets (x, y, z) that come after (0, 0, 0) in lexicographic order
+    static constexpr std::array<std::array<std::int64_t, 3>, 13> kAhead{{{0, 0, 1},
+                                                                         {0, 1, -1},
+                                                                         {0, 1, 0},
+                                                                         {0, 1, 1},
+                                                                         {1, -1, -1},
+                                                                         {1, -1, 0},
+                                                                         {1, -1, 1},
+                                                                         {1, 0, -1},
+                                                                         {1, 0, 0},
+                                                                         {1, 0, 1},
+                                                                         {1, 1, -1},
+                                                                         {1, 1, 0},
+                                                                         {1, 1, 1}}};
+    for (std::uint32_t e = 0; e < m_sorted.size(); ++e)
     {
-        for (std::uint32_t e = m_bucketStart[b]; e < m_bucketStart[b + 1]; ++e)
+        const CellEntry& first = m_sorted[e];
+        const Aabb& bi = m_bounds[first.body];
+        // the later entries of the same bucket that are in the same cell
+        for (std::uint32_t f = e + 1; f < m_bucketStart[first.bucket + 1]; ++f)
         {
-            const CellEntry& first = m_sorted[e];
-            const Aabb& bi = m_bounds[first.body];
-            for (std::uint32_t f = e + 1; f < m_bucketStart[b + 1]; ++f)
+            const CellEntry& second = m_sorted[f];
+            if (second.cell == first.cell && overlap(bi, m_bounds[second.body]))
+            {
+                report(first.body, second.body);
+            }
+        }
+        for (const auto& offset : kAhead)
+        {
+            const std::array<std::int64_t, 3> cell{first.cell[0] + offset[0], first.cell[1] + offset[1],
+                                                   first.cell[2] + offset[2]};
+            const std::uint64_t bucket = bucketOf(cell);
+            for (std::uint32_t f = m_bucketStart[bucket]; f < m_bucketStart[bucket + 1]; ++f)
             {
                 const CellEntry& second = m_sorted[f];
-                const Aabb& bj = m_bounds[second.body];
-                if (second.cell != first.cell || !overlap(bi, bj))
+                if (second.cell == cell && overlap(bi, m_bounds[second.body]))
                 {
-                    continue;
-                }
-                // report from the one cell that holds the lower corner of the intersection
-                if (cellOf(bi.lower.cwiseMax(bj.lower)) == first.cell)
-                {
-                    pairs.push_back({std::min(first.body, second.body), std::max(first.body, second.body)});
+                    report(first.body, second.body);
                 }
             }
         }

@@ -28,11 +28,12 @@ struct Aabb
 /// its predicted pose, grown by a margin for what the step's impulses may add.
 ///
 /// Dynamic bodies are binned in a uniform grid whose cells are as large as the largest dynamic box,
-/// so that a box spans at most two cells per axis and only bodies sharing a cell are compared: the
-/// cost grows with the number of bodies, not its square. A pair sharing several cells is reported
-/// from one of them only, the cell holding the lower corner of the boxes' intersection. Static boxes
-/// are compared with every dynamic body (there are few), and planes pair with every dynamic body
-/// that comes within the margin of them. The pairs are sorted by (a, b): the order, and hence the
+/// each by the cell of its box's lower corner. Boxes that overlap then lie in the same or in
+/// neighbouring cells, so each body is compared with the bodies of its own cell and of the 13
+/// neighbours on one side (the other 13 see it from theirs): the cost grows with the number of
+/// bodies, not its square, and every pair is met once. Static boxes are compared with every
+/// dynamic body (there are few), and planes pair with every dynamic body that comes within the
+/// margin of them. The pairs are sorted by (a, b): the order, and hence the
 /// simulation, does not depend on how the pairs were found.
 class BroadPhase
 {

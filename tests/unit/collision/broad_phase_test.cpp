@@ -114,9 +114,16 @@ TEST(BroadPhase, FindsExactlyThePairsWhoseBoxesOverlap)
         }
         EXPECT_GT(expected.size(), 300u) << "trial " << trial << ": too few pairs to say anything";
 
+        // again with the same broad phase (its sorting storage reused) on two threads: the same
+        // pairs in the same order
         std::vector<BodyPair> threaded;
         broadPhase.findPairs(bodies, margin, 2, threaded);
         ASSERT_EQ(threaded.size(), found.size());
+        for (std::size_t n = 0; n < found.size(); ++n)
+        {
+            EXPECT_EQ(threaded[n].a, found[n].a) << "trial " << trial << ", pair " << n;
+            EXPECT_EQ(threaded[n].b, found[n].b) << "trial " << trial << ", pair " << n;
+        }
     }
 }
 
