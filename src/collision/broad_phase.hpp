@@ -27,14 +27,14 @@ struct Aabb
 /// Candidate pairs: the bodies whose boxes overlap, each box covering the body's time-n pose and
 /// its predicted pose, grown by a margin for what the step's impulses may add.
 ///
-/// Dynamic bodies are binned in a uniform grid whose cells are as large as the largest dynamic box,
-/// each by the cell of its box's lower corner. Boxes that overlap then lie in the same or in
-/// neighbouring cells, so each body is compared with the bodies of its own cell and of the 13
+/// Dynamic bodies are binned in a uniform grid whose cells are a little larger than the largest
+/// dynamic box, each by the cell of its box's lower corner. Boxes that overlap then lie in the same
+/// or in neighbouring cells, so each body is compared with the bodies of its own cell and of the 13
 /// neighbours on one side (the other 13 see it from theirs): the cost grows with the number of
-/// bodies, not its square, and every pair is met once. Static boxes are compared with every
-/// dynamic body (there are few), and planes pair with every dynamic body that comes within the
-/// margin of them. The pairs are sorted by (a, b): the order, and hence the
-/// simulation, does not depend on how the pairs were found.
+/// bodies, not its square, and every pair is met once. Static boxes are compared with every dynamic
+/// body (there are few), and planes pair with every dynamic body that comes within the margin of
+/// them. The pairs are sorted by (a, b): the order, and hence the simulation, does not depend on how
+/// the pairs were found.
 class BroadPhase
 {
   public:

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -125,6 +126,49 @@ TEST(BroadPhase, FindsExactlyThePairsWhoseBoxesOverlap)
             EXPECT_EQ(threaded[n].b, found[n].b) << "trial " << trial << ", pair " << n;
         }
     }
+}
+
+TEST(BroadPhase, BoxesOfTheLargestSizeThatJustTouchArePaired)
+{
+    // The grid's cell is the largest box: the lower corners of two such boxes touching face to face
+    // lie a whole cell apart, where round-off in the cell coordinates could put them two cells apart
+    // and the pair would never be compared. Rows of touching cubes at arbitrary offsets and sizes.
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<Real> unit(0.0, 1.0);
+    int touching = 0;
+    for (int trial = 0; trial < 200; ++trial)
+    {
+        const Real half = 0.01 + unit(random);
+        const Vec3 start(1e3 * (unit(random) - 0.5), 1e3 * (unit(random) - 0.5), 1e3 * (unit(random) - 0.5));
+        const int axis = trial % 3;
+        std::vector<RigidBody> bodies;
+        Real lower = start[axis] - half;
+        for (int k = 0; k < 8; ++k)
+        {
+            // each cube's lower face is where the one before ends, to the last bit
+            Vec3 centre = start;
+            centre[axis] = lower + half;
+            while (centre[axis] - half > lower)
+            {
+                centre[axis] = std::nextafter(centre[axis], -1e300); // no gap from rounding
+            }
+            RigidBody body = makeBody(Box{Vec3::Constant(half)}, centre, Quat::Identity(), true);
+            bodies.push_back(body);
+            lower = shapeBounds(body.shape, body.pose()).upper[axis];
+        }
+        BroadPhase broadPhase;
+        std::vector<BodyPair> found;
+        broadPhase.findPairs(bodies, 0.0, 1, found);
+        const auto expected = allPairs(bodies, 0.0);
+        ASSERT_EQ(found.size(), expected.size()) << "trial " << trial << ", half side " << half;
+        for (std::size_t n = 0; n < found.size(); ++n)
+        {
+            EXPECT_EQ(found[n].a, expected[n].first) << "trial " << trial << ", pair " << n;
+            EXPECT_EQ(found[n].b, expected[n].second) << "trial " << trial << ", pair " << n;
+        }
+        touching += static_cast<int>(expected.size());
+    }
+    EXPECT_GE(touching, 200 * 7) << "each cube should at least touch the next";
 }
 
 TEST(BroadPhase, NothingPairsWithNothingAndStaticBodiesNeverPairWithEachOther)
