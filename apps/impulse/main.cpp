@@ -23,14 +23,14 @@ int main(int argc, char** argv)
                      "Scene file (JSON, see docs/scene-format.md), or an MJCF model (.xml, .mjcf; docs/mujoco.md)")
         ->required();
     runCommand->add_option("--dt", run.dt, "Time step in seconds (overrides the scene's dt)")
-        ->check(CLI::PositiveNumber);
+        ->check(impulse::app::positiveNumber());
     runCommand->add_option("--duration", run.duration, "Simulated time in seconds (overrides the scene's duration)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(impulse::app::nonNegativeNumber());
     runCommand->add_option("--out", run.outPath,
                            "Write the trajectory CSV here: t,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz, "
                            "dynamic bodies numbered from 0 in file order");
     runCommand->add_option("--every", run.every, "Write every N-th step (the first and last are always written)")
-        ->check(CLI::PositiveNumber);
+        ->check(impulse::app::wholeNumber(1, 1000000000));
     runCommand
         ->add_option("--scheme", run.scheme,
                      "Order of the step: guendelman (collision, velocity, contact, position; the default) or "
@@ -48,7 +48,7 @@ int main(int argc, char** argv)
         ->add_option("--restitution-threshold", run.restitutionThreshold,
                      "Resolve collisions approaching slower than this speed (m/s) with restitution 0; "
                      "default none")
-        ->check(CLI::NonNegativeNumber);
+        ->check(impulse::app::nonNegativeNumber());
     runCommand
         ->add_option("--threads", run.threads,
                      "Worker threads (0: one per hardware thread); the trajectory is the same at any count")
@@ -67,7 +67,7 @@ int main(int argc, char** argv)
     exportCommand
         ->add_option("--timeconst", timeconst,
                      "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
-        ->check(CLI::PositiveNumber);
+        ->check(impulse::app::positiveNumber());
     std::string compareScene;
     CLI::App* compareCommand =
         app.add_subcommand("compare", "Run a scene in impulse and in MuJoCo and print the figures side by side");
@@ -75,7 +75,7 @@ int main(int argc, char** argv)
     compareCommand
         ->add_option("--timeconst", timeconst,
                      "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
-        ->check(CLI::PositiveNumber);
+        ->check(impulse::app::positiveNumber());
 #endif
 
     try

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "see_commands.hpp"
 
+#include "option_checks.hpp"
+
 namespace impulse::app
 {
 
@@ -32,7 +34,7 @@ SeeCommands::SeeCommands(CLI::App& app)
     m_renderCommand->add_option("--size", m_render.size, "WIDTHxHEIGHT in pixels")->capture_default_str();
     m_renderCommand->add_option("--fps", m_render.fps, "Frames per simulated second")->capture_default_str();
     m_renderCommand->add_option("--duration", m_render.duration, "Scene input: simulated time, overrides the scene's")
-        ->check(CLI::NonNegativeNumber);
+        ->check(nonNegativeNumber());
     m_renderCommand->add_option("--at", m_render.at, "With --out FILE.png: the time shown (default: the end)");
     m_renderCommand->add_flag("--trail", m_render.trail, "Draw the path of each centre up to the time shown");
     m_renderCommand->add_flag("--no-video", m_noVideo, "Write the frames only, no MP4");

@@ -167,8 +167,10 @@ foreach(bad_option "--dt;-1" "--dt;0" "--dt;nan" "--duration;-1" "--duration;nan
     run_impulse(run "${scene}" ${bad_option} --out "${WORK}/option.csv")
     exited_with_error(refused)
     list(GET bad_option 0 option_name)
-    if(refused AND run_err MATCHES "${option_name}")
-        check_passed("${run_command} exits ${run_rc} and names ${option_name}")
+    # the option, what it wants and what it got, e.g. --dt: must be a number above 0, got "-1"
+    list(GET bad_option 1 option_value)
+    if(refused AND run_err MATCHES "${option_name}: must be [^\n]*, got \"${option_value}\"")
+        check_passed("${run_command} exits ${run_rc}, names ${option_name} and says what it wants")
     else()
         check_failed("${run_command}: exit ${run_rc}, stderr: ${run_err}")
     endif()
