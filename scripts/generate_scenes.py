@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Writes the generated reference scenes (stacks, pyramid, stacking regressions, nonconvex scenes) into scenes/.
+"""Writes the generated reference scenes (stacks, pyramid, stacking regressions, tipping, nonconvex) into scenes/.
 
 Run from anywhere: python3 scripts/generate_scenes.py. The hand-written scenes 1-8 are not touched.
 """
@@ -24,7 +24,9 @@ def write(name, description, bodies, duration, materials=None, dt=0.001):
     (SCENES / f"{name}.json").write_text(text + "\n")
 
 
-def box(name, half, position, mass=None, density=None, static=False, material="default"):
+def box(name, half, position, mass=None, density=None, static=False, material="default", orientation=None,
+        exact=False):
+    """A box body; exact keeps the position's every digit (a tilted box whose edge must touch a plane)."""
     body = {"name": name}
     if static:
         body["static"] = True
@@ -33,7 +35,9 @@ def box(name, half, position, mass=None, density=None, static=False, material="d
         body["mass"] = mass
     if density is not None:
         body["density"] = density
-    body["position"] = [round(p, 12) for p in position]
+    body["position"] = list(position) if exact else [round(p, 12) for p in position]
+    if orientation is not None:
+        body["orientation"] = orientation
     body["material"] = material
     return body
 
@@ -79,6 +83,130 @@ def seesaw():
               box("heavy", [0.1, 0.1, 0.1], [0.85, 0, 1.45], mass=20.0)]
     write("seesaw", "A 10 kg plank on a static pivot, a 5 kg cube at rest on one end and a 20 kg cube dropped from "
           "1 m onto the other: the heavy side goes down and the light cube is thrown up.", bodies, 3.0)
+
+
+PLANK = [0.25, 0.1, 0.05]  # a 0.5 x 0.2 x 0.1 plank
+
+
+def plank_stack(offsets):
+    """Planks of 1 kg stacked flush on the ground, each moved along +x by offsets[k] from the one below."""
+    x, bodies = 0.0, []
+    for k in range(len(offsets) + 1):
+        if k > 0:
+            x += offsets[k - 1]
+        bodies.append(box(f"plank{k + 1}", PLANK, [x, 0, 0.05 + 0.1 * k], mass=1.0))
+    return bodies
+
+
+def overhang(name, d, duration, verdict):
+    """Four planks each offset d past the one below: the upper three's centre of mass lies 2 d from the
+    bottom plank's centre, against its edge at 0.25; the upper two on plank 2 at 1.5 d, the top one at d."""
+    write(name, f"Four planks 0.5 x 0.2 x 0.1 m of 1 kg stacked flush on the ground, mu = 0.6, eps = 0, each offset "
+          f"{d} m along +x from the plank below. The upper three's centre of mass is at 2 d = {2 * d:.3f} m from the "
+          f"bottom plank's centre, {abs(2 * d - 0.25) * 1000:.0f} mm {'past' if 2 * d > 0.25 else 'inside'} its edge "
+          f"at 0.25 m; every smaller sub-stack is within its support (the upper two at 1.5 d = {1.5 * d:.4f}, the "
+          f"top one at d = {d} from the centre of the plank below). {verdict}",
+          [GROUND] + plank_stack([d] * 3), duration, materials={"default": {"restitution": 0.0, "friction": 0.6}})
+
+
+def harmonic_stack():
+    """Six planks, the k-th from the top offset 0.9 L / (2 k) past the one below (L = 0.5, k = 1..5): the top k
+    planks' centre of mass is 0.9 L / 2 = 0.225 from the centre of the plank below, 25 mm inside its edge."""
+    offsets = [0.9 * 0.5 / (2 * k) for k in range(5, 0, -1)]  # from the bottom up: k = 5, 4, 3, 2, 1
+    write("harmonic_stack", "Six planks 0.5 x 0.2 x 0.1 m of 1 kg stacked flush on the ground, mu = 0.6, eps = 0, "
+          "the k-th from the top offset 0.9 L / (2 k) past the one below (L = 0.5; k = 5..1 from the bottom up: "
+          "0.045, 0.05625, 0.075, 0.1125, 0.225 m; the top plank's centre 0.51375 m from the bottom one's). The top "
+          "k planks' centre of mass is then 0.225 m from the centre of the plank below, 25 mm (0.1 L / 2) inside "
+          "its edge, for every k: it must stand, every plank within 1 mm of its start over 5 s.",
+          [GROUND] + plank_stack(offsets), 5.0, materials={"default": {"restitution": 0.0, "friction": 0.6}})
+
+
+def tower_drop_time(n, degrees, lam):
+    """When the top cube's centre of a tower of n cubes (side 0.2) tipping rigidly about its bottom downhill
+    edge has dropped 0.1 m: q'' = lambda^2 sin q from rest, q the centre of mass's angle past the vertical."""
+    up = (-math.sin(math.radians(degrees)), math.cos(math.radians(degrees)))  # in (downhill, normal)
+    q0 = math.atan2(-0.1 * up[1] - 0.1 * n * up[0], -0.1 * up[0] + 0.1 * n * up[1])
+    top = (-0.1, 0.2 * n - 0.1)
+
+    def height(turn):
+        c, s_ = math.cos(turn), math.sin(turn)
+        return (top[0] * c + top[1] * s_) * up[0] + (-top[0] * s_ + top[1] * c) * up[1]
+
+    q, w, t, step = q0, 0.0, 0.0, 1e-5
+    while height(0.0) - height(q - q0) <= 0.1:
+        w += step * lam * lam * math.sin(q)
+        q += step * w
+        t += step
+    return t
+
+
+def leaning_tower(n, degrees=15, mu=0.9, name=None):
+    """n cubes of side 0.2 stacked along the normal of a plane inclined `degrees` (downhill is +x)."""
+    angle = math.radians(degrees)
+    normal = [math.sin(angle), 0.0, math.cos(angle)]
+    bodies = [{"name": "incline", "static": True, "shape": {"type": "plane", "normal": normal, "offset": 0},
+               "material": "default"}]
+    for k in range(n):
+        bodies.append(box(f"cube{k}", [0.1] * 3, [(0.1 + 0.2 * k) * c for c in normal], mass=1.0,
+                          orientation={"axis": [0, 1, 0], "angle_deg": degrees}, exact=True))
+    # seen from the bottom cube's downhill edge, the centre of mass is atan(0.1 / (0.1 n)) uphill of
+    # the incline's normal, which leans `degrees` downhill of the vertical
+    past = degrees - math.degrees(math.atan2(0.1, 0.1 * n))
+    rigid = math.sqrt(n * 9.81 * 0.1 * math.hypot(1, n) / (n * 0.04 * (1 + n * n) / 3))
+    if n * math.tan(angle) > 1:
+        verdict = (f"n tan {degrees} = {n * math.tan(angle):.3f} > 1: the centre of mass is {past:.3f} degrees "
+                   "past the vertical over the bottom cube's downhill edge, and the tower tips over about that edge "
+                   f"(mu = {mu} > tan {degrees} = {math.tan(angle):.3f}: it does not slide). Rigid about the edge, "
+                   f"lambda = sqrt(m g d / I_edge) = {rigid:.3f} /s, and the top cube's centre has dropped 0.1 m "
+                   f"after {tower_drop_time(n, degrees, rigid):.3f} s.")
+        duration = 3.0
+    else:
+        verdict = (f"n tan {degrees} = {n * math.tan(angle):.3f} < 1: the centre of mass is {-past:.3f} degrees "
+                   f"uphill of the vertical over the bottom cube's downhill edge and mu = {mu} > tan {degrees} = "
+                   f"{math.tan(angle):.3f}: it stands, every cube within 1 mm of its start over 5 s.")
+        duration = 5.0
+    write(name or f"leaning_tower_{n}", f"{n} cubes of side 0.2, 1 kg, stacked flush along the normal of a static "
+          f"plane through the origin inclined {degrees} degrees (normal (sin {degrees}, 0, cos {degrees}); downhill "
+          f"is +x), each rotated {degrees} degrees about y, the bottom one flat on the plane; mu = {mu}, eps = 0. A "
+          f"tower of n tips iff n tan {degrees} > 1. {verdict}", bodies, duration,
+          materials={"default": {"restitution": 0.0, "friction": mu}})
+
+
+def domino(name, past_deg, duration, verdict):
+    """A 0.05 x 0.2 x 0.4 box tilted about y by the critical angle atan(0.05 / 0.4) plus past_deg, its bottom
+    edge along y at x = 0.025 exactly on the ground: centre = edge + R (-0.025, 0, 0.2)."""
+    critical = math.degrees(math.atan2(0.05, 0.4))
+    tilt = critical + past_deg
+    t = math.radians(tilt)
+    centre = [0.025 - 0.025 * math.cos(t) + 0.2 * math.sin(t), 0.0, 0.025 * math.sin(t) + 0.2 * math.cos(t)]
+    bodies = [GROUND, box("domino", [0.025, 0.1, 0.2], centre, mass=1.0,
+                          orientation={"axis": [0, 1, 0], "angle_deg": tilt}, exact=True)]
+    write(name, "A domino 0.05 x 0.2 x 0.4 m (thickness along x, width along y, height along z), 1 kg, mu = 0.6, "
+          f"eps = 0, released from rest tilted {tilt:.4f} degrees about y with its bottom edge at x = 0.025 exactly "
+          f"on the ground: the critical angle atan(0.05 / 0.4) = {critical:.4f} degrees "
+          f"{'plus' if past_deg > 0 else 'minus'} {abs(past_deg):g} degree. {verdict}", bodies, duration,
+          materials={"default": {"restitution": 0.0, "friction": 0.6}})
+
+
+def tipping_scenes():
+    overhang("overhang_topples", 0.135, 2.0, "The upper three topple off the bottom plank's edge: rigid about that "
+             "edge (lambda = 4.84 /s, 7.6 degrees past balance) the top plank's centre has dropped 0.1 m after "
+             "0.46 s.")
+    overhang("overhang_stands", 0.115, 5.0, "It must stand: every plank within 1 mm of its start over 5 s.")
+    harmonic_stack()
+    leaning_tower(3)
+    leaning_tower(4)
+    for n in (5, 6, 20):
+        leaning_tower(n, degrees=10, mu=0.8, name=f"incline_tower_{n}")
+    domino("domino_falls", 1.0, 3.0, "Its centre of mass is 1 degree past the vertical over that edge: it falls "
+           "over (lambda = sqrt(m g d / I_edge) = 6.04 /s; tilted 80 degrees after 0.83 s) and ends at rest lying "
+           "on its broad face, centre at z = 0.025.")
+    domino("domino_rocks_back", -1.0, 20.0, "Its centre of mass is 1 degree short of the vertical over that edge: "
+           "it rocks back, upright after 0.439 s, never tilts past the critical angle the other way (at most 6.125 "
+           "degrees by energy), and ends at rest standing on its base, centre at z = 0.2. Landing on the opposite "
+           "edge with eps = 0 does not stop a slender block: it rocks on about that edge with its angular velocity "
+           "times 1 - 1.5 sin^2 7.125 = 0.977 (Housner 1963), amplitudes 5.32, 4.79, 4.39 ... degrees, and is at "
+           "rest after 17.07 s.")
 
 
 def mesh(name, file, position, orientation=None, mass=None, density=None, static=False, material="default"):
@@ -214,6 +342,7 @@ if __name__ == "__main__":
     tori_stack()
     nonconvex_pile(200)
     nonconvex_pile(1000)
+    tipping_scenes()
     for pile_kind in ("sphere", "box"):
         for pile_size in (1000, 10000):
             pile(pile_kind, pile_size)

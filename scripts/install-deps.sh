@@ -21,6 +21,11 @@ packages=(
   libbullet-dev        # optional: impulse_bench_bullet runs the same scenes in Bullet 3.24 for comparison
   clang-format         # formatting check
   libmujoco-dev        # optional: MJCF models, impulse compare (impulse_mujoco, MuJoCo 2.2.2)
+  python3-dev          # the Python module (import impulse) ...
+  pybind11-dev         # ... its bindings
+  python3-numpy        # ... body states as arrays
+  python3-pytest       # ... its tests
+  python3-matplotlib   # ... the example's kinetic-energy plot
 )
 
 missing=()

@@ -2,6 +2,7 @@
 #include "bench_command.hpp"
 
 #include "option_checks.hpp"
+#include "progress.hpp"
 
 #include <impulse/io/scene.hpp>
 
@@ -86,84 +87,6 @@ std::optional<fs::path> findScene(const std::string& argument, const fs::path& d
     tried = candidates;
     return std::nullopt;
 }
-
-/// The progress line on standard error: scene, a bar, steps done of all, and the time left.
-/// Drawn at most ten times a second, and only when enabled (standard error is a terminal).
-class Progress
-{
-  public:
-    explicit Progress(bool enabled) : m_enabled(enabled) {}
-
-    void loading(const std::string& name)
-    {
-        if (m_enabled)
-        {
-            draw(name + "  loading");
-        }
-    }
-
-    void update(const std::string& name, long long done, long long total, long long warmUp, Clock::duration elapsed,
-                Clock::time_point now)
-    {
-        if (!m_enabled || (done < total && now - m_lastDraw < std::chrono::milliseconds(100)))
-        {
-            return;
-        }
-        m_lastDraw = now;
-        constexpr int width = 24;
-        const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
-        const int filled = static_cast<int>(fraction * width);
-        const double left =
-            done > 0 ? seconds(elapsed) / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
-        std::string line = name + "  [" + std::string(static_cast<std::size_t>(filled), '#') +
-                           std::string(static_cast<std::size_t>(width - filled), '.') + "]  " + std::to_string(done) +
-                           "/" + std::to_string(total) + " steps" + (done <= warmUp ? " (warm-up)" : "") + "  ETA " +
-                           duration(left);
-        draw(line);
-    }
-
-    /// Removes the line, so that what follows starts at the left margin.
-    void clear()
-    {
-        if (m_enabled && m_shown)
-        {
-            std::fputs("\r\033[K", stderr);
-            std::fflush(stderr);
-            m_shown = false;
-        }
-    }
-
-  private:
-    static std::string duration(double s)
-    {
-        const auto whole = static_cast<long long>(std::ceil(s));
-        char text[32];
-        if (whole < 60)
-        {
-            std::snprintf(text, sizeof text, "%llds", whole);
-        }
-        else if (whole < 3600)
-        {
-            std::snprintf(text, sizeof text, "%lldm%02llds", whole / 60, whole % 60);
-        }
-        else
-        {
-            std::snprintf(text, sizeof text, "%lldh%02lldm", whole / 3600, whole % 3600 / 60);
-        }
-        return text;
-    }
-
-    void draw(const std::string& line)
-    {
-        std::fprintf(stderr, "\r%s\033[K", line.c_str());
-        std::fflush(stderr);
-        m_shown = true;
-    }
-
-    bool m_enabled;
-    bool m_shown = false;
-    Clock::time_point m_lastDraw{};
-};
 
 /// The figures of one scene.
 struct Result
@@ -264,11 +187,11 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
             const StepStats& stats = scene.world.lastStepStats();
             contacts += stats.contactPairs;
             pairs += stats.candidatePairs;
-            impulses += stats.collisionImpulses + stats.contactImpulses + stats.shockImpulses;
+            impulses += stats.contactRows;
             islands += stats.islands;
             threads = std::max(threads, stats.threads);
         }
-        progress.update(file.name, k + 1, total, warmUp, end - runStart, end);
+        progress.update(file.name, k + 1, total, k + 1 <= warmUp ? " (warm-up)" : "", end - runStart, end);
     }
     result.totalSeconds = seconds(Clock::now() - runStart);
     progress.clear();
@@ -426,7 +349,7 @@ int runBench(const BenchOptions& options)
         std::fflush(stdout);
     }
 
-    Progress progress(options.progress && isatty(fileno(stderr)) != 0);
+    Progress progress(options.progress && stderrIsTerminal());
     nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
     for (const SceneFile& file : files)
     {

@@ -32,6 +32,14 @@ int main(int argc, char** argv)
     runCommand->add_option("--every", run.every, "Write every N-th step (the first and last are always written)")
         ->check(impulse::app::wholeNumber(1, 1000000000));
     runCommand
+        ->add_option("--time-limit", run.timeLimit,
+                     "Stop after this many seconds of wall time, with the state reached as the last sample "
+                     "(Ctrl-C and SIGTERM stop the same way)")
+        ->check(impulse::app::positiveNumber());
+    bool noRunProgress = false;
+    runCommand->add_flag("--no-progress", noRunProgress,
+                         "No progress line (it is drawn on standard error only when that is a terminal)");
+    runCommand
         ->add_option("--scheme", run.scheme,
                      "Order of the step: guendelman (collision, velocity, contact, position; the default) or "
                      "traditional (velocity and position, then collisions and contacts)")
@@ -69,9 +77,11 @@ int main(int argc, char** argv)
                      "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
         ->check(impulse::app::positiveNumber());
     std::string compareScene;
-    CLI::App* compareCommand =
-        app.add_subcommand("compare", "Run a scene in impulse and in MuJoCo and print the figures side by side");
-    compareCommand->add_option("scene", compareScene, "Scene file (JSON)")->required();
+    CLI::App* compareCommand = app.add_subcommand(
+        "compare", "Run a scene or an MJCF model in impulse and in MuJoCo and print the figures side by side");
+    compareCommand
+        ->add_option("scene", compareScene, "Scene file (JSON), or an MJCF model (.xml) with impulse_duration")
+        ->required();
     compareCommand
         ->add_option("--timeconst", timeconst,
                      "Time constant of MuJoCo's contacts in seconds (default 2 dt; see docs/mujoco.md)")
@@ -107,5 +117,6 @@ int main(int argc, char** argv)
         return impulse::app::compare(compareScene, timeconst);
     }
 #endif
+    run.progress = !noRunProgress;
     return impulse::app::runScene(run);
 }

@@ -69,9 +69,16 @@ int compare(const std::string& scenePath, double timeconst)
         return 2;
     }
     std::printf("scene    %s\n", c.scene.c_str());
-    std::printf("steps    %lld of %g s; MuJoCo %s runs the exported MJCF with native mj_step,\n", c.steps, c.dt,
-                mj_versionString());
-    std::printf("         contact time constant %g s (docs/mujoco.md)\n", c.timeconst);
+    std::printf("steps    %lld of %g s; MuJoCo %s runs the %s with native mj_step,\n", c.steps, c.dt,
+                mj_versionString(), c.timeconst > 0.0 ? "exported MJCF" : "model");
+    if (c.timeconst > 0.0)
+    {
+        std::printf("         contact time constant %g s (docs/mujoco.md)\n", c.timeconst);
+    }
+    else
+    {
+        std::printf("         the model's own contact parameters (docs/mujoco.md)\n");
+    }
     std::printf("\n%-30s  %-30s  %-30s  %s\n", "figure", "impulse", "MuJoCo", "oracle (scenarios.md)");
     for (const mujoco::FigureRow& row : c.rows)
     {

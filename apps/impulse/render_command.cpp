@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "render_command.hpp"
 
+#include "progress.hpp"
 #include "see_inputs.hpp"
+#include "stop_request.hpp"
 
 #include <impulse/io/scene.hpp>
 #include <impulse/viz/raster.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,20 +27,18 @@ namespace
 LoadedRun simulateScene(const RenderOptions& options)
 {
     LoadedRun run;
-    io::Scene scene;
-    try
-    {
-        scene = io::loadScene(options.inputPath);
-    }
-    catch (const io::SceneError& error)
-    {
-        throw InputError(error.what());
-    }
+    io::Scene scene = loadSceneInput(options.inputPath);
     if (!options.scenePath.empty())
     {
         throw InputError("--scene is for a trajectory input; " + options.inputPath + " is a scene already");
     }
     const double duration = options.duration.value_or(scene.duration);
+    if (!std::isfinite(duration))
+    {
+        throw InputError(options.inputPath +
+                         ": no duration: pass --duration, or add <numeric name=\"impulse_duration\" "
+                         "data=\"SECONDS\"/> to the model's <custom>");
+    }
     const double dt = scene.options.dt;
     const auto steps = static_cast<long long>(std::llround(duration / dt));
     const long long stride = std::max(1LL, static_cast<long long>(std::llround(1.0 / (options.fps * dt))));
@@ -102,12 +103,103 @@ struct Stage
     viz::RenderSettings settings;
 };
 
-Stage buildStage(const LoadedRun& run, int width, int height)
+/// "X,Y,Z" as a vector, or InputError naming the option.
+std::optional<Vec3> parseVector(const std::string& text, const std::string& option)
+{
+    if (text.empty())
+    {
+        return std::nullopt;
+    }
+    Vec3 v;
+    const char* at = text.data();
+    const char* end = text.data() + text.size();
+    for (int i = 0; i < 3; ++i)
+    {
+        const auto [next, error] = std::from_chars(at, end, v[i]);
+        const bool last = i == 2;
+        if (error != std::errc() || !std::isfinite(v[i]) || (last ? next != end : (next == end || *next != ',')))
+        {
+            throw InputError(option + ": expected X,Y,Z (three numbers), got \"" + text + "\"");
+        }
+        at = next + 1;
+    }
+    return v;
+}
+
+/// The camera options, checked before anything is simulated or read.
+struct CameraRequest
+{
+    std::optional<Vec3> direction;
+    std::optional<Vec3> position;
+    std::optional<Vec3> target;
+    double zoom = 1.0;
+};
+
+CameraRequest parseCamera(const RenderOptions& options)
+{
+    CameraRequest request;
+    request.direction = parseVector(options.viewDirection, "--view-direction");
+    request.position = parseVector(options.cameraPosition, "--camera-position");
+    request.target = parseVector(options.lookAt, "--look-at");
+    request.zoom = options.zoom;
+    if (!(options.zoom > 0.0 && options.zoom <= 1000.0))
+    {
+        throw InputError("--zoom: must be a number above 0 and at most 1000");
+    }
+    if (request.direction && request.position)
+    {
+        throw InputError("--view-direction and --camera-position: give one or the other");
+    }
+    if (request.target && !request.position)
+    {
+        throw InputError("--look-at goes with --camera-position");
+    }
+    if (request.direction && !(request.direction->norm() > 0.0))
+    {
+        throw InputError("--view-direction: must not be zero");
+    }
+    if (request.position && request.target && (*request.position - *request.target).norm() < 1e-9)
+    {
+        throw InputError("--camera-position: the camera is at the point it looks at");
+    }
+    return request;
+}
+
+/// The camera: framing the dynamic bodies from the front right and above, or as the options say.
+viz::Camera chooseCamera(const LoadedRun& run, const CameraRequest& request, Real aspect)
+{
+    const viz::Bounds bounds = viz::dynamicBounds(run.trajectory, run.view);
+    const Vec3 up = viz::upDirection(run.view.gravity);
+    viz::Camera camera;
+    if (request.position)
+    {
+        camera.eye = *request.position;
+        camera.target = request.target.value_or(bounds.centre());
+        camera.up = up;
+        if ((camera.eye - camera.target).norm() < 1e-9)
+        {
+            camera.target = camera.eye - up; // at the centre of the bodies: look down
+        }
+    }
+    else if (request.direction)
+    {
+        camera = viz::frameCamera(bounds, up, aspect, *request.direction);
+    }
+    else
+    {
+        camera = viz::frameCamera(bounds, up, aspect);
+    }
+    // zoom as a lens does: a narrower field of view
+    constexpr Real degrees = 180.0 / 3.14159265358979323846;
+    camera.fovYDegrees = 2.0 * std::atan(std::tan(0.5 * camera.fovYDegrees / degrees) / request.zoom) * degrees;
+    return camera;
+}
+
+Stage buildStage(const LoadedRun& run, const viz::Camera& camera, int width, int height)
 {
     Stage stage;
     const viz::Bounds bounds = viz::contentBounds(run.trajectory, run.view);
-    const Vec3 up = viz::upDirection(run.view.gravity);
-    stage.camera = viz::frameCamera(bounds, up, static_cast<Real>(width) / height);
+    stage.camera = camera;
     stage.settings.width = width;
     stage.settings.height = height;
     stage.settings.shadowBounds = bounds;
@@ -168,14 +260,17 @@ bool endsWithPng(const std::string& path)
 
 int renderRun(const RenderOptions& options)
 {
-    const bool sceneInput = std::filesystem::path(options.inputPath).extension() == ".json";
+    const bool sceneInput =
+        std::filesystem::path(options.inputPath).extension() == ".json" || isModelPath(options.inputPath);
     const bool still = endsWithPng(options.outPath);
     LoadedRun run;
     int width = 0;
     int height = 0;
+    CameraRequest cameraRequest;
     try
     {
         std::tie(width, height) = parseSize(options.size, "--size");
+        cameraRequest = parseCamera(options);
         if (!(options.fps > 0.0 && options.fps <= 1000.0))
         {
             throw InputError("--fps must be in (0, 1000]");
@@ -215,7 +310,8 @@ int renderRun(const RenderOptions& options)
         return 1;
     }
 
-    const Stage stage = buildStage(run, width, height);
+    const Stage stage =
+        buildStage(run, chooseCamera(run, cameraRequest, static_cast<Real>(width) / height), width, height);
     try
     {
         if (still)
@@ -248,16 +344,31 @@ int renderRun(const RenderOptions& options)
             return 2;
         }
         const auto start = std::chrono::steady_clock::now();
-        for (std::size_t frame = 0; frame < frames; ++frame)
+        const StopRequest stop;
+        Progress progress(options.progress && stderrIsTerminal(), "frames");
+        const std::string label = std::filesystem::path(options.inputPath).filename().string();
+        std::size_t written = 0;
+        for (std::size_t frame = 0; frame < frames && stop.signal() == 0; ++frame)
         {
             const std::size_t sample = sampleAt(run.trajectory, begin + static_cast<double>(frame) / options.fps);
             char name[32];
             std::snprintf(name, sizeof name, "frame_%05zu.png", frame);
             viz::writePng(renderSample(run, stage, sample, options.trail), directory / name);
+            written = frame + 1;
+            const auto now = std::chrono::steady_clock::now();
+            progress.update(label, static_cast<long long>(written), static_cast<long long>(frames), "", now - start,
+                            now);
         }
+        progress.clear();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::printf("frames      %zu in %s (%dx%d, %g fps), %.1f ms per frame\n", frames, directory.c_str(), width,
-                    height, options.fps, 1e3 * seconds / static_cast<double>(frames));
+        std::printf("frames      %zu in %s (%dx%d, %g fps), %.1f ms per frame\n", written, directory.c_str(), width,
+                    height, options.fps, 1e3 * seconds / static_cast<double>(std::max<std::size_t>(written, 1)));
+        if (stop.signal() != 0)
+        {
+            std::printf("stopped     by %s after %zu of %zu frames; no video\n", stop.name(), written, frames);
+            std::fflush(stdout);
+            return stop.exitCode();
+        }
 
         if (!options.video)
         {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "run_command.hpp"
 
+#include "progress.hpp"
+#include "see_inputs.hpp"
+#include "stop_request.hpp"
+
 #include <impulse/io/scene.hpp>
 #include <impulse/io/trajectory.hpp>
-
-#ifdef IMPULSE_HAVE_MUJOCO
-#include <impulse/mujoco/mujoco.hpp>
-#endif
 
 #include <chrono>
 #include <cmath>
@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace impulse::app
 {
@@ -39,37 +40,16 @@ bool stateIsFinite(const World& world, const std::vector<BodyId>& bodies)
 int runScene(const RunOptions& options)
 {
     io::Scene scene;
-    const std::string extension = std::filesystem::path(options.scenePath).extension().string();
-    const bool mjcf = extension == ".xml" || extension == ".mjcf";
+    const bool mjcf = isModelPath(options.scenePath);
     try
     {
-        if (mjcf)
-        {
-#ifdef IMPULSE_HAVE_MUJOCO
-            scene = mujoco::loadMjcfScene(options.scenePath);
-#else
-            std::cerr << "impulse: " << options.scenePath
-                      << ": MJCF models need MuJoCo; this impulse was built without it (IMPULSE_WITH_MUJOCO)\n";
-            return 2;
-#endif
-        }
-        else
-        {
-            scene = io::loadScene(options.scenePath);
-        }
+        scene = loadSceneInput(options.scenePath);
     }
-    catch (const io::SceneError& error)
+    catch (const InputError& error)
     {
         std::cerr << "impulse: " << error.what() << "\n";
         return 2;
     }
-#ifdef IMPULSE_HAVE_MUJOCO
-    catch (const mujoco::ModelError& error)
-    {
-        std::cerr << "impulse: " << error.what() << "\n";
-        return 2;
-    }
-#endif
     if (mjcf && std::isnan(scene.duration) && !options.duration)
     {
         std::cerr << "impulse: " << options.scenePath
@@ -124,8 +104,26 @@ int runScene(const RunOptions& options)
         return 2;
     }
 
+    // The trajectory is written sample by sample into `pending` and handed to the file in whole
+    // samples (at most every 0.2 s of wall time or 4 MB), so that the file ends with a whole sample
+    // whenever the run stops, even when it is killed outright.
     std::ofstream file;
+    std::ostringstream pending;
     std::optional<io::TrajectoryWriter> writer;
+    auto lastFlush = std::chrono::steady_clock::now();
+    const auto flushWhole = [&](bool force)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        if (!writer || (!force && pending.tellp() < (4 << 20) && now - lastFlush < std::chrono::milliseconds(200)))
+        {
+            return;
+        }
+        const std::string text = pending.str();
+        file.write(text.data(), static_cast<std::streamsize>(text.size()));
+        file.flush();
+        pending.str("");
+        lastFlush = now;
+    };
     if (!options.outPath.empty())
     {
         file.open(options.outPath, std::ios::binary);
@@ -134,29 +132,55 @@ int runScene(const RunOptions& options)
             std::cerr << "impulse: " << options.outPath << ": cannot open for writing\n";
             return 1;
         }
-        writer.emplace(file);
+        writer.emplace(pending);
         writer->writeHeader();
         writer->writeSample(0.0, scene.world, scene.dynamicBodies);
+        flushWhole(true);
     }
 
     const double energyStart = scene.world.kineticEnergy() + scene.world.potentialEnergy();
+    const StopRequest stop;
+    Progress progress(options.progress && stderrIsTerminal());
+    const std::string label = std::filesystem::path(options.scenePath).filename().string();
     const auto start = std::chrono::steady_clock::now();
+    long long done = 0;
+    std::string stoppedBy;
     for (long long step = 1; step <= steps; ++step)
     {
         scene.world.step(scene.options);
+        done = step;
         // stop before a non-finite state reaches the file (cheap: a few comparisons per body)
         if (!stateIsFinite(scene.world, scene.dynamicBodies))
         {
+            progress.clear();
+            flushWhole(true);
             std::cerr << "impulse: " << options.scenePath
                       << ": the simulation diverged (non-finite state) at t = " << static_cast<double>(step) * dt
                       << " s; try a smaller --dt\n";
             return 1;
         }
-        if (writer && (step % options.every == 0 || step == steps))
+        const auto now = std::chrono::steady_clock::now();
+        if (stop.signal() != 0)
+        {
+            stoppedBy = stop.name();
+        }
+        else if (options.timeLimit && std::chrono::duration<double>(now - start).count() >= *options.timeLimit)
+        {
+            stoppedBy = "--time-limit";
+        }
+        if (writer && (step % options.every == 0 || step == steps || !stoppedBy.empty()))
         {
             writer->writeSample(static_cast<double>(step) * dt, scene.world, scene.dynamicBodies);
+            flushWhole(false);
         }
+        if (!stoppedBy.empty())
+        {
+            break;
+        }
+        progress.update(label, step, steps, "", now - start, now);
     }
+    progress.clear();
+    flushWhole(true);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double energyEnd = scene.world.kineticEnergy() + scene.world.potentialEnergy();
 
@@ -173,16 +197,26 @@ int runScene(const RunOptions& options)
     std::printf("scene       %s (%s)\n", options.scenePath.c_str(), scene.name.c_str());
     std::printf("bodies      %zu dynamic, %zu static\n", scene.dynamicBodies.size(),
                 static_cast<std::size_t>(scene.world.bodyCount()) - scene.dynamicBodies.size());
-    std::printf("steps       %lld (dt %g s, %g s simulated)\n", steps, dt, static_cast<double>(steps) * dt);
+    if (stoppedBy.empty())
+    {
+        std::printf("steps       %lld (dt %g s, %g s simulated)\n", steps, dt, static_cast<double>(steps) * dt);
+    }
+    else
+    {
+        std::printf("steps       %lld of %lld (dt %g s, %g s simulated): stopped by %s\n", done, steps, dt,
+                    static_cast<double>(done) * dt, stoppedBy.c_str());
+    }
     std::printf("wall time   %.3f s, %.4f ms per step\n", wall,
-                steps > 0 ? 1e3 * wall / static_cast<double>(steps) : 0.0);
+                done > 0 ? 1e3 * wall / static_cast<double>(done) : 0.0);
     std::printf("energy      %.9g J at start, %.9g J at end\n", energyStart, energyEnd);
     std::printf("state hash  %016llx\n", static_cast<unsigned long long>(scene.world.stateHash()));
     if (writer)
     {
-        std::printf("trajectory  %s\n", options.outPath.c_str());
+        std::printf("trajectory  %s%s\n", options.outPath.c_str(),
+                    stoppedBy.empty() ? "" : " (whole samples up to where the run stopped)");
     }
-    return 0;
+    std::fflush(stdout);
+    return stop.signal() != 0 ? stop.exitCode() : 0;
 }
 
 } // namespace impulse::app

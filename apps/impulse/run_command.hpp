@@ -20,10 +20,14 @@ struct RunOptions
     std::optional<std::string> shockPropagation; ///< "on" or "off"
     std::optional<std::string> pushOut;          ///< "on" or "off"
     int threads = 1;                             ///< 0: one per hardware thread
+    std::optional<double> timeLimit;             ///< wall-clock seconds; stop at the next sample after it
+    bool progress = true;                        ///< the progress line, when standard error is a terminal
 };
 
-/// Runs a scene and prints a summary. Returns the process exit code: 0 on success, 2 for a scene
-/// that cannot be used, 1 for any other failure (such as an output file that cannot be written).
+/// Runs a scene and prints a summary. Returns the process exit code: 0 on success (a run stopped by
+/// its time limit included), 2 for a scene that cannot be used, 1 for any other failure (such as
+/// an output file that cannot be written), 128 + the signal for a run stopped by Ctrl-C or SIGTERM,
+/// which still leaves a trajectory of whole samples ending with the state where it stopped.
 int runScene(const RunOptions& options);
 
 } // namespace impulse::app

@@ -30,6 +30,7 @@ class SeeCommands
     RenderOptions m_render;
     ViewOptions m_view;
     bool m_noVideo = false;
+    bool m_noRenderProgress = false;
     CLI::App* m_plotCommand = nullptr;
     CLI::App* m_renderCommand = nullptr;
     CLI::App* m_viewCommand = nullptr;

@@ -2,10 +2,15 @@
 #include "see_inputs.hpp"
 
 #include <impulse/io/scene.hpp>
+#ifdef IMPULSE_HAVE_MUJOCO
+#include <impulse/mujoco/mujoco.hpp>
+#endif
 
+#include <cctype>
 #include <charconv>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,12 +20,53 @@ extern char** environ;
 namespace impulse::app
 {
 
+bool isModelPath(const std::string& path)
+{
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension)
+    {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    return extension == ".xml" || extension == ".mjcf";
+}
+
+io::Scene loadSceneInput(const std::string& path)
+{
+    try
+    {
+        if (isModelPath(path))
+        {
+#ifdef IMPULSE_HAVE_MUJOCO
+            return mujoco::loadMjcfScene(path);
+#else
+            throw InputError(path +
+                             ": MJCF models need MuJoCo; this impulse was built without it (IMPULSE_WITH_MUJOCO)");
+#endif
+        }
+        return io::loadScene(path);
+    }
+    catch (const io::SceneError& error)
+    {
+        throw InputError(error.what());
+    }
+#ifdef IMPULSE_HAVE_MUJOCO
+    catch (const mujoco::ModelError& error)
+    {
+        throw InputError(error.what());
+    }
+#endif
+}
+
 LoadedRun loadRun(const std::string& trajectoryPath, const std::string& scenePath)
 {
     LoadedRun run;
     try
     {
         run.trajectory = io::readTrajectory(trajectoryPath);
+        if (!run.trajectory.cutOff.empty())
+        {
+            std::cerr << "impulse: note: " << trajectoryPath << ": " << run.trajectory.cutOff << "\n";
+        }
         run.title = std::filesystem::path(trajectoryPath).stem().string();
         if (scenePath.empty())
         {
@@ -28,7 +74,7 @@ LoadedRun loadRun(const std::string& trajectoryPath, const std::string& scenePat
         }
         else
         {
-            const io::Scene scene = io::loadScene(scenePath);
+            const io::Scene scene = loadSceneInput(scenePath);
             run.view = viz::SceneView::fromScene(scene);
             if (!scene.name.empty())
             {

@@ -2,6 +2,7 @@
 // What plot, render and view share: reading a trajectory and, optionally, its scene.
 #pragma once
 
+#include <impulse/io/scene.hpp>
 #include <impulse/io/trajectory_reader.hpp>
 #include <impulse/viz/scene_view.hpp>
 
@@ -18,6 +19,13 @@ class InputError : public std::runtime_error
   public:
     using std::runtime_error::runtime_error;
 };
+
+/// Whether a path names an MJCF model (.xml, .mjcf) rather than a scene file.
+bool isModelPath(const std::string& path);
+
+/// Reads a scene file, or an MJCF model through MuJoCo (an MJCF model's duration is NaN unless it
+/// sets impulse_duration). Throws InputError with the loader's message, naming the file.
+io::Scene loadSceneInput(const std::string& path);
 
 /// A trajectory with what is known of its scene.
 struct LoadedRun

@@ -16,6 +16,16 @@ enum class BodyType
     Dynamic, ///< moves under gravity and impulses
 };
 
+/// Which pairs of bodies collide. Two bodies collide when each one's group shares a bit with the
+/// other's mask: (a.group & b.mask) != 0 and (b.group & a.mask) != 0. The default (group 1, every
+/// bit of the mask set) collides with everything; a mask of 0 collides with nothing.
+struct CollisionFilter
+{
+    std::uint32_t group = 1;
+    std::uint32_t mask = 0xffffffffU;
+    friend bool operator==(const CollisionFilter&, const CollisionFilter&) = default;
+};
+
 /// Everything needed to create a body. Exactly one of mass and density must be positive for a
 /// dynamic body; mass wins when both are set.
 struct BodyDef
@@ -32,9 +42,15 @@ struct BodyDef
     Quat orientation = Quat::Identity(); ///< normalised on creation
     Vec3 linearVelocity = Vec3::Zero();  ///< world frame
     Vec3 angularVelocity = Vec3::Zero(); ///< world frame, rad/s
+    CollisionFilter filter{};            ///< which other bodies it collides with
+    /// A full inertia tensor, kg m^2, about the centre of mass in the body frame, for a body whose
+    /// mass is not spread as the shape's; zero (the default): principalInertia applies. Checked and
+    /// diagonalised as World::setMassProperties does.
+    Mat3 inertia = Mat3::Zero();
 };
 
-/// Handle to a body of a World; bodies are numbered in creation order.
+/// Handle to a body of a World; bodies are numbered in creation order from 0, and a number is never
+/// given to another body, not even after World::removeBody.
 struct BodyId
 {
     std::uint32_t index = 0;
@@ -44,11 +60,11 @@ struct BodyId
 /// A snapshot of one body, world frame, SI units.
 struct BodyState
 {
-    Vec3 position = Vec3::Zero();
-    Quat orientation = Quat::Identity();
-    Vec3 linearVelocity = Vec3::Zero();
-    Vec3 angularVelocity = Vec3::Zero();
-    Vec3 angularMomentum = Vec3::Zero();
+    Vec3 position = Vec3::Zero();        ///< m, the centre of mass (the body frame's origin)
+    Quat orientation = Quat::Identity(); ///< unit quaternion turning the body frame into the world frame
+    Vec3 linearVelocity = Vec3::Zero();  ///< m/s, of the centre of mass
+    Vec3 angularVelocity = Vec3::Zero(); ///< rad/s; derived: I(q)^-1 L
+    Vec3 angularMomentum = Vec3::Zero(); ///< kg m^2/s, about the centre of mass
 };
 
 } // namespace impulse

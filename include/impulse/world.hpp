@@ -32,11 +32,17 @@ enum class Scheme
 /// as stored (the quaternion not renormalised, the angular momentum not rebuilt from the angular
 /// velocity). Restored into the world it came from, or into one built from the same scene, it
 /// continues the trajectory bit for bit, so a fault deep into a long run can be reached again in
-/// seconds.
+/// seconds. Forces and torques applied for the next step are not part of it.
 struct WorldSnapshot
 {
     Real time = 0.0;
-    std::vector<BodyState> bodies; ///< every body in creation order, static ones included
+    /// every body in creation order, static ones included; a removed body keeps its entry (its pose
+    /// when it was removed, at rest), and restore ignores the entry of a body removed here
+    std::vector<BodyState> bodies;
+    /// The contact layer's memory: each touching pair's cached points and the loads they carried,
+    /// which the next step starts from. Opaque, but plain numbers (integers stored exactly), so that
+    /// a checkpoint file can keep it bit for bit; empty means none (a world that starts cold).
+    std::vector<double> contacts;
 };
 
 /// Controls of one time step. Defaults are those of Guendelman, Bridson & Fedkiw 2003.
@@ -44,8 +50,15 @@ struct StepOptions
 {
     Real dt = 1e-3; ///< seconds
     Scheme scheme = Scheme::Guendelman;
-    int collisionIterations = 5;  ///< sweeps of the elastic collision pass
-    int contactIterations = 10;   ///< sweeps of the contact pass; restitution ramps -1+1/n ... 0
+    int collisionIterations = 5; ///< sweeps of the elastic collision pass
+    /// Projected Gauss-Seidel sweeps of the contact pass over an island's contact points (more for a
+    /// small island: up to as many as fit the work of this many sweeps over a thousand points, at
+    /// most twenty times this); it stops early once a sweep changes no body's velocity by more than
+    /// 1e-6 of the island's speeds.
+    int contactIterations = 10;
+    /// Cap on the Gauss-Seidel sweeps of each level in shock propagation, which solves a level's points
+    /// to round-off and stops as soon as it has.
+    int shockIterations = 8;
     int pairIterations = 20;      ///< cap on impulses per pair within one sweep
     Real contactThickness = 1e-6; ///< m; the contact pass treats points closer than this as touching
     /// Size collision impulses with the time-n velocity v + dt*a/2 (exact energy for eps = 1) rather
@@ -73,19 +86,43 @@ struct StepOptions
     /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
     /// hardware thread. Trajectories are bit-identical whatever the number.
     int threads = 1;
+    /// Verification mode for tests: every use of the contact layer's cached points also runs the exact
+    /// narrow phase, and a point missed or a separation off by more than the pair's motion since
+    /// capture allows makes step() throw std::logic_error. Slow; it changes no result.
+    bool verifyContacts = false;
+};
+
+/// A contact point of the last step and what it carried: the impulses the contact pass and shock
+/// propagation applied there during that step (the collision pass's elastic impulses are not
+/// included). Divided by the step, they are the contact force: a box of mass m resting on the ground
+/// has normal impulses summing to m g dt.
+struct Contact
+{
+    BodyId a;                            ///< the body the impulse acts on as given
+    BodyId b;                            ///< the body receiving the opposite
+    Vec3 point = Vec3::Zero();           ///< world frame
+    Vec3 normal = Vec3::UnitZ();         ///< unit, from b toward a
+    Real separation = 0.0;               ///< signed distance at the step's start pose, m; negative overlaps
+    Real normalImpulse = 0.0;            ///< along the normal, on a, N s (>= 0)
+    Vec3 frictionImpulse = Vec3::Zero(); ///< across the normal, on a, N s
 };
 
 /// What the last step did.
 struct StepStats
 {
     int candidatePairs = 0;    ///< pairs that passed the broad phase
+    int broadPhaseRepeats = 0; ///< times the broad phase ran again for bodies sped beyond their boxes
     int collisionImpulses = 0; ///< impulses applied by the collision pass
-    int contactImpulses = 0;   ///< impulses applied by the contact pass
     int collisionSweeps = 0;   ///< collision sweeps actually run (stops early when one applies none)
-    int shockImpulses = 0;     ///< impulses applied by shock propagation
     int pushOutMoves = 0;      ///< pushes that moved a body (or a pair of bodies) out of an overlap
     int contactLevels = 0;     ///< levels of the contact graph
     int contactPairs = 0;      ///< candidate pairs touching (within the contact thickness) at the contact graph
+    int narrowPhaseCalls = 0;  ///< exact detections of a pair by the contact layer (captures, exact pairs)
+    int contactCaptures = 0;   ///< pairs whose points the contact layer captured anew
+    int contactRows = 0;       ///< contact points the contact pass solved
+    int contactSweeps = 0;     ///< Gauss-Seidel sweeps of the contact pass, most of any island
+    int coldRestarts = 0;      ///< islands solved again from no load (a warm start gained energy)
+    int shockIterations = 0;   ///< sweeps of shock propagation, summed over levels
     int islands = 0;           ///< groups of dynamic bodies connected by candidate pairs, solved independently
     int threads = 1;           ///< worker threads the step used
     /// Wall time of each stage of the step, milliseconds (measured, so not deterministic).
@@ -123,6 +160,10 @@ class World
 
     /// Adds a body. Throws std::invalid_argument naming the offending field if the definition is
     /// not physical (non-positive size or mass, non-finite numbers, a dynamic plane, ...).
+    ///
+    /// Every function below that takes a BodyId throws std::invalid_argument ("body: ...") for a
+    /// handle that names no body of this world or a removed one, and for a value that is not
+    /// finite, naming the argument.
     BodyId createBody(const BodyDef& def);
 
     /// Places a dynamic body: centre of mass, orientation (normalised), linear and angular velocity,
@@ -130,6 +171,53 @@ class World
     /// std::invalid_argument for a static body or non-finite values.
     void setState(BodyId body, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
                   const Vec3& angularVelocity);
+
+    /// Takes a body out of the world: it no longer collides, moves or counts in the energies and
+    /// the momentum, and its handle is refused from then on. No other body is renumbered, and its
+    /// number is not given to a later body. Throws std::invalid_argument for an unknown handle.
+    void removeBody(BodyId body);
+    /// Whether the handle names a body of this world that has not been removed.
+    bool contains(BodyId body) const;
+
+    /// Adds a force through the centre of mass, world frame, newtons. Forces and torques add up
+    /// until the next step, act during it (v += dt (g + F/m), L += dt tau) and are then cleared:
+    /// a force that lasts is applied before every step.
+    void applyForce(BodyId body, const Vec3& force);
+    /// Adds a force acting at a world point: the force through the centre of mass plus the torque
+    /// (point - centre of mass) x force, for the next step.
+    void applyForce(BodyId body, const Vec3& force, const Vec3& worldPoint);
+    /// Adds a torque about the centre of mass, world frame, N m, for the next step.
+    void applyTorque(BodyId body, const Vec3& torque);
+    /// Changes the velocities at once by an impulse through the centre of mass, N s: v += J / m.
+    void applyImpulse(BodyId body, const Vec3& impulse);
+    /// Changes the velocities at once by an impulse at a world point: v += J / m,
+    /// L += (point - centre of mass) x J, w = I(q)^-1 L.
+    void applyImpulse(BodyId body, const Vec3& impulse, const Vec3& worldPoint);
+    /// Changes the angular momentum at once, N m s: L += H.
+    void applyAngularImpulse(BodyId body, const Vec3& angularImpulse);
+    /// The force and the torque (about the centre of mass) applied so far for the next step.
+    Vec3 appliedForce(BodyId body) const;
+    Vec3 appliedTorque(BodyId body) const;
+
+    /// Sets which bodies this one collides with; see CollisionFilter. Takes effect at the next step.
+    void setCollisionFilter(BodyId body, const CollisionFilter& filter);
+    CollisionFilter collisionFilter(BodyId body) const;
+    /// Lets one pair of bodies collide or not, whatever their filters say (false: they pass through
+    /// each other). A pair is enabled until disabled.
+    void setCollisionEnabled(BodyId a, BodyId b, bool enabled);
+    /// Whether the two bodies may collide: their filters agree and the pair is not disabled.
+    bool collisionEnabled(BodyId a, BodyId b) const;
+
+    /// Gives a dynamic body another mass (kg) and inertia tensor (kg m^2, about the centre of mass,
+    /// in the body frame, the frame the shape is defined in). The tensor must be symmetric and
+    /// positive definite, its principal moments obeying the triangle inequality (I1 + I2 >= I3, as
+    /// for any real body, to a relative 1e-9). The body frame stays the shape's: a tensor with
+    /// products of inertia is diagonalised, I = A diag(I1, I2, I3) A^T, and the dynamics use its
+    /// principal axes A (see principalAxes). The centre of mass stays the body's origin. The linear
+    /// and angular velocity are kept, the angular momentum becomes I w.
+    void setMassProperties(BodyId body, Real mass, const Mat3& inertia);
+    /// Sets the mass and scales the inertia tensor with it (the shape's density changes).
+    void setMass(BodyId body, Real mass);
 
     /// The state between steps, exactly; see WorldSnapshot.
     WorldSnapshot snapshot() const;
@@ -142,11 +230,17 @@ class World
     /// Advances the world by options.dt with the separated collision / contact time step.
     void step(const StepOptions& options);
 
+    /// Bodies ever created, removed ones included: valid handles are numbered below it.
     std::uint32_t bodyCount() const;
     bool isDynamic(BodyId body) const;
     BodyState state(BodyId body) const;
     Real mass(BodyId body) const;             ///< infinite for static bodies
-    Vec3 principalInertia(BodyId body) const; ///< body frame, kg m^2
+    Vec3 principalInertia(BodyId body) const; ///< principal moments, kg m^2 (zero for static bodies)
+    /// The principal axes of inertia in the body frame, as the columns of a rotation matrix A:
+    /// inertia(body) = A diag(principalInertia(body)) A^T. The identity unless setMassProperties was
+    /// given a tensor with products of inertia.
+    Mat3 principalAxes(BodyId body) const;
+    Mat3 inertia(BodyId body) const; ///< the inertia tensor about the centre of mass, body frame, kg m^2
     const Shape& shape(BodyId body) const;
     MaterialId material(BodyId body) const;
     const Material& material(MaterialId material) const;
@@ -159,6 +253,10 @@ class World
 
     /// Counters of the last step.
     const StepStats& lastStepStats() const;
+
+    /// The contact points of the last step that carried load (a normal impulse), in a fixed order: by
+    /// pair (lower body index first), then as the pair's points were found. Empty before any step.
+    const std::vector<Contact>& contacts() const;
 
     /// A hash of every dynamic body's state bits: equal hashes mean bit-identical states.
     std::uint64_t stateHash() const;

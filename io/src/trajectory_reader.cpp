@@ -63,6 +63,7 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
     Trajectory trajectory;
     std::string row;
     std::size_t line = 0;
+    bool unterminated = false; // the line just read has no end of line: the file was cut off in it
     auto readLine = [&]() -> bool
     {
         if (!std::getline(in, row))
@@ -70,6 +71,7 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
             return false;
         }
         ++line;
+        unterminated = in.eof();
         if (!row.empty() && row.back() == '\r')
         {
             row.pop_back(); // tolerate files that went through a Windows editor
@@ -90,11 +92,17 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
     // fixes n; every later group must repeat it.
     bool countKnown = false;
     std::size_t nextBody = 0;
+    std::size_t cutLine = 0;
     while (readLine())
     {
         if (row.empty())
         {
             continue;
+        }
+        if (unterminated)
+        {
+            cutLine = line; // a row the writer never finished: its last number may be cut short
+            break;
         }
         const auto v = parseRow(row, source, line);
         const double body = v[1];
@@ -145,9 +153,10 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
         trajectory.samples.push_back(sample);
         ++nextBody;
     }
-    if (trajectory.times.empty())
+    std::string dropped;
+    if (cutLine != 0)
     {
-        fail(source, line, "no samples after the header");
+        dropped = "an unfinished row";
     }
     if (!countKnown)
     {
@@ -155,9 +164,24 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
     }
     else if (nextBody != trajectory.bodyCount)
     {
-        fail(source, line,
-             "the last sample has " + std::to_string(nextBody) + " bodies, the others " +
-                 std::to_string(trajectory.bodyCount));
+        // the last sample lacks bodies: cut off between two of its rows
+        trajectory.times.pop_back();
+        trajectory.samples.resize(trajectory.times.size() * trajectory.bodyCount);
+        cutLine = cutLine != 0 ? cutLine : line;
+        dropped = "an incomplete last sample of " + std::to_string(nextBody) + " of " +
+                  std::to_string(trajectory.bodyCount) + " bodies" + (dropped.empty() ? "" : " and " + dropped);
+    }
+    if (trajectory.times.empty())
+    {
+        fail(source, line, cutLine != 0 ? "cut off before its first whole sample" : "no samples after the header");
+    }
+    if (cutLine != 0)
+    {
+        std::ostringstream note;
+        note.precision(9);
+        note << "cut off at line " << cutLine << " (" << dropped << " left out); " << trajectory.times.size()
+             << " whole samples up to t = " << trajectory.times.back() << " s";
+        trajectory.cutOff = note.str();
     }
     return trajectory;
 }

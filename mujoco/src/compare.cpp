@@ -5,6 +5,7 @@
 #include <impulse/mujoco/mujoco.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -230,16 +231,35 @@ std::string fmtVec(const Vec3& v)
 
 } // namespace
 
+bool isModelFile(const std::filesystem::path& path)
+{
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".xml" || extension == ".mjcf";
+}
+
 Comparison compareScene(const std::filesystem::path& scenePath, double timeconst)
 {
-    io::Scene scene = io::loadScene(scenePath);
+    // an MJCF model runs as it is on both sides (MuJoCo with the model's own contact parameters); a
+    // scene file is exported to MJCF for MuJoCo
+    const bool modelInput = isModelFile(scenePath);
+    const auto load = [&] { return modelInput ? loadMjcfScene(scenePath) : io::loadScene(scenePath); };
+    io::Scene scene = load();
+    if (modelInput && std::isnan(scene.duration))
+    {
+        throw ModelError(scenePath.string() +
+                         ": no duration: add <numeric name=\"impulse_duration\" data=\"SECONDS\"/> "
+                         "to the model's <custom>");
+    }
     const SceneFacts facts = factsOf(scene);
     const Real dt = scene.options.dt;
     const long long steps = std::llround(scene.duration / dt);
 
-    // both runs are judged by the same collision detector: MuJoCo's, on the exported model
-    const std::string xml = exportMjcf(scene, timeconst);
-    const ModelPtr model = loadModelFromString(xml, scenePath.string() + " (exported)");
+    // both runs are judged by the same collision detector: MuJoCo's, on the model it runs
+    const ModelPtr model = modelInput
+                               ? loadModel(scenePath)
+                               : loadModelFromString(exportMjcf(scene, timeconst), scenePath.string() + " (exported)");
     const DataPtr data(mj_makeData(model.get()));
     const DataPtr probe(mj_makeData(model.get()));
     if (model->nkey > 0)
@@ -292,7 +312,7 @@ Comparison compareScene(const std::filesystem::path& scenePath, double timeconst
     }
 
     // wall time per step: separate runs with nothing else in the loop
-    io::Scene timed = io::loadScene(scenePath);
+    io::Scene timed = load();
     auto start = std::chrono::steady_clock::now();
     for (long long k = 1; k <= steps; ++k)
     {
@@ -315,7 +335,7 @@ Comparison compareScene(const std::filesystem::path& scenePath, double timeconst
     c.scene = scenePath.string() + (scene.name.empty() ? "" : " (" + scene.name + ")");
     c.steps = steps;
     c.dt = dt;
-    c.timeconst = timeconst > 0.0 ? timeconst : defaultTimeconst(dt);
+    c.timeconst = modelInput ? 0.0 : (timeconst > 0.0 ? timeconst : defaultTimeconst(dt));
     const auto row = [&](std::string label, std::string a, std::string b, std::string oracle = "") {
         c.rows.push_back({std::move(label), std::move(a), std::move(b), std::move(oracle)});
     };

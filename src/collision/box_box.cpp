@@ -26,21 +26,24 @@ struct FacePolygon
 {
     static constexpr std::size_t kCapacity = 16;
     std::array<Vec3, kCapacity> corners;
+    std::array<std::uint32_t, kCapacity> features; ///< per corner: what made it (contact.hpp)
     std::size_t size = 0;
 
-    void add(const Vec3& corner)
+    void add(const Vec3& corner, std::uint32_t feature)
     {
         if (size < corners.size())
         {
-            corners[size++] = corner;
+            corners[size] = corner;
+            features[size++] = feature;
         }
     }
 };
 
 // Clips a convex polygon to the half-space {p : normal . p <= offset}, into `result`. Each corner's
 // distance to the plane is worked out once, and the walk steps to the next corner without a
-// division: the clip runs four times per face contact at every re-detection.
-void clip(const FacePolygon& polygon, const Vec3& normal, Real offset, FacePolygon& result)
+// division: the clip runs four times per face contact at every re-detection. A corner made by the
+// plane is named after the edge it cuts and the plane (`side`).
+void clip(const FacePolygon& polygon, const Vec3& normal, Real offset, std::uint32_t side, FacePolygon& result)
 {
     result.size = 0;
     std::array<Real, FacePolygon::kCapacity> distance;
@@ -57,11 +60,12 @@ void clip(const FacePolygon& polygon, const Vec3& normal, Real offset, FacePolyg
         const Real dq = distance[next];
         if (dp <= 0.0)
         {
-            result.add(p);
+            result.add(p, polygon.features[i]);
         }
         if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0))
         {
-            result.add(p + (dp / (dp - dq)) * (q - p));
+            const std::uint32_t edge = combineFeatures(polygon.features[i], polygon.features[next]);
+            result.add(p + (dp / (dp - dq)) * (q - p), combineFeatures(edge, side));
         }
     }
 }
@@ -94,11 +98,13 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
         incident.centre + incidentSign * incident.half[incidentAxis] * incident.axes.col(incidentAxis);
     const Vec3 du = incident.half[u] * incident.axes.col(u);
     const Vec3 dv = incident.half[v] * incident.axes.col(v);
+    // the incident face's corners are named by the face and the corner
+    const std::uint32_t face = 4 * (2 * static_cast<std::uint32_t>(incidentAxis) + (incidentSign > 0.0 ? 1 : 0));
     FacePolygon polygon;
-    polygon.add(faceCentre + du + dv);
-    polygon.add(faceCentre - du + dv);
-    polygon.add(faceCentre - du - dv);
-    polygon.add(faceCentre + du - dv);
+    polygon.add(faceCentre + du + dv, face);
+    polygon.add(faceCentre - du + dv, face + 1);
+    polygon.add(faceCentre - du - dv, face + 2);
+    polygon.add(faceCentre + du - dv, face + 3);
 
     // clip to the four side planes of the reference face
     FacePolygon clipped;
@@ -110,18 +116,24 @@ void faceContact(const OrientedBox& reference, int referenceAxis, const Vec3& no
         }
         const Vec3 side = reference.axes.col(k);
         const Real centre = side.dot(reference.centre);
-        clip(polygon, side, centre + reference.half[k], clipped);
-        clip(clipped, -side, -centre + reference.half[k], polygon);
+        const auto sideId = static_cast<std::uint32_t>(100 + 2 * k);
+        clip(polygon, side, centre + reference.half[k], sideId, clipped);
+        clip(clipped, -side, -centre + reference.half[k], sideId + 1, polygon);
     }
 
     const Real faceOffset = normal.dot(reference.centre) + reference.half[referenceAxis];
+    // the points lie on the incident box; which box that is and its reference face tell them apart
+    // from those of the other box's faces
+    const SampleOf sample = sign > 0.0 ? SampleOf::A : SampleOf::B;
+    const std::uint32_t referenceFace = 200 + 2 * static_cast<std::uint32_t>(referenceAxis) + (sign > 0.0 ? 10 : 0) +
+                                        (normal.dot(reference.axes.col(referenceAxis)) > 0.0 ? 1 : 0);
     for (std::size_t i = 0; i < polygon.size; ++i)
     {
         const Vec3& p = polygon.corners[i];
         const Real phi = normal.dot(p) - faceOffset;
         if (phi < threshold)
         {
-            out.push_back({p, sign * normal, phi});
+            out.push_back({p, sign * normal, phi, combineFeatures(referenceFace, polygon.features[i]), sample});
         }
     }
 }
@@ -160,7 +172,8 @@ void edgeContact(const OrientedBox& a, int edgeA, const OrientedBox& b, int edge
     s = std::clamp(d1.dot(pointB + t * d2 - pointA), -a.half[edgeA], a.half[edgeA]);
     const Vec3 onA = pointA + s * d1;
     const Vec3 onB = pointB + t * d2;
-    out.push_back({0.5 * (onA + onB), normal, phi});
+    out.push_back({0.5 * (onA + onB), normal, phi,
+                   300 + 3 * static_cast<std::uint32_t>(edgeA) + static_cast<std::uint32_t>(edgeB), SampleOf::Between});
 }
 
 } // namespace

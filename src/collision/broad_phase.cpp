@@ -65,21 +65,21 @@ std::uint64_t mixCell(std::int64_t x, std::int64_t y, std::int64_t z)
 
 } // namespace
 
-void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads, std::vector<BodyPair>& pairs)
+void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int threads, std::vector<BodyPair>& pairs)
 {
     pairs.clear();
     m_bounds.resize(bodies.size());
     parallelForEach(threads, bodies.size(),
                     [&](std::size_t i)
                     {
-                        const RigidBody& body = bodies[i];
-                        if (std::holds_alternative<Plane>(body.shape))
+                        const BroadPhaseBody& body = bodies[i];
+                        if (std::holds_alternative<Plane>(*body.shape))
                         {
                             return;
                         }
-                        const Aabb now = shapeBounds(body.shape, body.pose());
-                        const Aabb next = shapeBounds(body.shape, body.predicted);
-                        const Real grow = body.dynamic ? margin : 0.0;
+                        const Aabb now = shapeBounds(*body.shape, body.now);
+                        const Aabb next = shapeBounds(*body.shape, body.next);
+                        const Real grow = body.dynamic ? body.margin : 0.0;
                         m_bounds[i] = {now.lower.cwiseMin(next.lower).array() - grow,
                                        now.upper.cwiseMax(next.upper).array() + grow};
                     });
@@ -88,7 +88,11 @@ void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, in
     m_planes.clear();
     for (std::uint32_t i = 0; i < bodies.size(); ++i)
     {
-        if (std::holds_alternative<Plane>(bodies[i].shape))
+        if (!bodies[i].present)
+        {
+            continue;
+        }
+        if (std::holds_alternative<Plane>(*bodies[i].shape))
         {
             m_planes.push_back(i);
         }
@@ -112,18 +116,18 @@ void BroadPhase::findPairs(const std::vector<RigidBody>& bodies, Real margin, in
         }
     }
 
-    // planes: every dynamic body whose bounding sphere comes within the margin at either pose
+    // planes: every dynamic body whose bounding sphere comes within its margin at either pose
     for (const std::uint32_t p : m_planes)
     {
-        const Plane& plane = std::get<Plane>(bodies[p].shape);
-        const Pose planePose = bodies[p].pose();
+        const Plane& plane = std::get<Plane>(*bodies[p].shape);
+        const Pose& planePose = bodies[p].now;
         const Vec3 normal = planePose.rotation * plane.normal;
         const Real offset = plane.offset + normal.dot(planePose.position);
         for (const std::uint32_t i : m_dynamic)
         {
-            const RigidBody& body = bodies[i];
-            const Real nearest = std::min(normal.dot(body.position), normal.dot(body.predicted.position)) - offset;
-            if (nearest - body.boundingRadius <= margin)
+            const BroadPhaseBody& body = bodies[i];
+            const Real nearest = std::min(normal.dot(body.now.position), normal.dot(body.next.position)) - offset;
+            if (nearest - body.boundingRadius <= body.margin)
             {
                 pairs.push_back({std::min(i, p), std::max(i, p)});
             }

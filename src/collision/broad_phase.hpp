@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
-#include "dynamics/rigid_body.hpp"
+#include <impulse/math.hpp>
+#include <impulse/shape.hpp>
 
 #include <array>
 #include <cstdint>
@@ -9,6 +10,19 @@
 
 namespace impulse
 {
+
+/// A body as the broad phase sees it: its shape at time n and at its predicted pose, and how far
+/// beyond them it may go this step.
+struct BroadPhaseBody
+{
+    const Shape* shape = nullptr;
+    Pose now;
+    Pose next;
+    Real boundingRadius = 0.0;
+    Real margin = 0.0; ///< m; the box is grown by this (static bodies: 0)
+    bool dynamic = false;
+    bool present = true; ///< false for a removed body, which pairs with nothing
+};
 
 /// Two bodies that may touch this step, a < b.
 struct BodyPair
@@ -25,7 +39,7 @@ struct Aabb
 };
 
 /// Candidate pairs: the bodies whose boxes overlap, each box covering the body's time-n pose and
-/// its predicted pose, grown by a margin for what the step's impulses may add.
+/// its predicted pose, grown by its own margin for what the step's impulses may add.
 ///
 /// Dynamic bodies are binned in a uniform grid whose cells are a little larger than the largest
 /// dynamic box, each by the cell of its box's lower corner. Boxes that overlap then lie in the same
@@ -38,9 +52,11 @@ struct Aabb
 class BroadPhase
 {
   public:
-    /// Fills `pairs` for the bodies at time n with `predicted` already set; bounds are computed on
-    /// `threads` threads.
-    void findPairs(const std::vector<RigidBody>& bodies, Real margin, int threads, std::vector<BodyPair>& pairs);
+    /// Fills `pairs` for the bodies; bounds are computed on `threads` threads.
+    void findPairs(const std::vector<BroadPhaseBody>& bodies, int threads, std::vector<BodyPair>& pairs);
+
+    /// The box of body i in the last findPairs (meaningless for planes).
+    const Aabb& bounds(std::size_t i) const { return m_bounds[i]; }
 
   private:
     struct CellEntry

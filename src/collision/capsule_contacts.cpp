@@ -28,7 +28,7 @@ Segment axisOf(const Capsule& capsule, const Pose& pose)
 // Two spheres, one centred at `centreA` (radius ra) of body A and one at `centreB` (radius rb) of
 // body B: one point in the middle of the overlap, normal from B toward A.
 void sphereContact(const Vec3& centreA, Real ra, const Vec3& centreB, Real rb, Real threshold,
-                   std::vector<ContactPoint>& out)
+                   std::vector<ContactPoint>& out, std::uint32_t feature = 0)
 {
     const Vec3 between = centreA - centreB;
     const Real distance = between.norm();
@@ -38,7 +38,7 @@ void sphereContact(const Vec3& centreA, Real ra, const Vec3& centreB, Real rb, R
         return;
     }
     const Vec3 normal = distance > 0.0 ? Vec3(between / distance) : Vec3::UnitZ();
-    out.push_back({centreB + normal * (rb + 0.5 * phi), normal, phi});
+    out.push_back({centreB + normal * (rb + 0.5 * phi), normal, phi, feature, SampleOf::Between});
 }
 
 // Parameter in [0, 1] of the point of `segment` closest to `point`.
@@ -65,12 +65,13 @@ void collideCapsulePlane(const Capsule& a, const Pose& poseA, const Plane& b, co
     const Vec3 normal = poseB.rotation * b.normal;
     const Real offset = b.offset + normal.dot(poseB.position);
     const Segment axis = axisOf(a, poseA);
-    for (const Vec3& centre : {axis.start, axis.end})
+    for (std::uint32_t end = 0; end < 2; ++end)
     {
+        const Vec3& centre = end == 0 ? axis.start : axis.end;
         const Real phi = normal.dot(centre) - offset - a.radius;
         if (phi < threshold)
         {
-            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi});
+            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi, end, SampleOf::Between});
         }
     }
 }
@@ -80,7 +81,7 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
 {
     const Segment axis = axisOf(a, poseA);
     const auto boxPhi = [&](Real s) { return boxDistance(b.halfExtents, poseB.toLocal(axis.at(s))).phi; };
-    const auto addEndSphere = [&](Real s)
+    const auto addEndSphere = [&](Real s, std::uint32_t feature)
     {
         const Vec3 centre = axis.at(s);
         const DistanceSample sample = boxDistance(b.halfExtents, poseB.toLocal(centre));
@@ -88,11 +89,11 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
         if (phi < threshold)
         {
             const Vec3 normal = poseB.rotation * sample.gradient;
-            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi});
+            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi, feature, SampleOf::Between});
         }
     };
-    addEndSphere(0.0);
-    addEndSphere(1.0);
+    addEndSphere(0.0, 0);
+    addEndSphere(1.0, 1);
 
     // The box's signed distance is convex, so along the segment it has one minimum (or one flat
     // bottom): golden-section search finds it. It adds a point only when strictly deeper than both
@@ -127,7 +128,7 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
     const Real scale = a.radius + a.halfLength + b.halfExtents.norm();
     if (boxPhi(middle) < std::min(boxPhi(0.0), boxPhi(1.0)) - 1e-9 * scale)
     {
-        addEndSphere(middle);
+        addEndSphere(middle, 2);
     }
 }
 
@@ -151,10 +152,10 @@ void collideCapsuleCapsule(const Capsule& a, const Pose& poseA, const Capsule& b
         const Real s1 = std::clamp(std::max((sb.start - sa.start).dot(da), (sb.end - sa.start).dot(da)) / aa, 0.0, 1.0);
         if (s1 - s0 > 1e-9)
         {
-            for (const Real s : {s0, s1})
+            for (std::uint32_t end = 0; end < 2; ++end)
             {
-                const Vec3 pa = sa.at(s);
-                sphereContact(pa, a.radius, sb.at(closestParameter(sb, pa)), b.radius, threshold, out);
+                const Vec3 pa = sa.at(end == 0 ? s0 : s1);
+                sphereContact(pa, a.radius, sb.at(closestParameter(sb, pa)), b.radius, threshold, out, end);
             }
             return;
         }

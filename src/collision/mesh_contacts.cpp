@@ -6,7 +6,9 @@
 // passage becomes a sample point as well.
 #include "collision/mesh_contacts.hpp"
 
+#include "collision/narrow_phase.hpp"
 #include "geometry/box_queries.hpp"
+#include "geometry/mesh_queries.hpp"
 #include "geometry/signed_distance.hpp"
 #include "geometry/triangle_bvh.hpp"
 
@@ -45,12 +47,19 @@ struct Target
 
 struct MeshTarget final : Target
 {
-    const MeshGeometry& mesh;
-    MeshTarget(const MeshGeometry& m, const Pose& p) : Target(p, m.lower(), m.upper()), mesh(m) {}
-    MeshDistance distance(const Vec3& local, Real threshold) const override { return mesh.distance(local, threshold); }
+    const MeshQueries& mesh;
+    MeshQueryScratch& scratch;
+    MeshTarget(const MeshQueries& m, const Pose& p, MeshQueryScratch& s)
+        : Target(p, m.lower(), m.upper()), mesh(m), scratch(s)
+    {
+    }
+    MeshDistance distance(const Vec3& local, Real threshold) const override
+    {
+        return mesh.distance(local, threshold, scratch);
+    }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
-        mesh.segmentCrossings(a, b, enterLeave);
+        mesh.segmentCrossings(a, b, enterLeave, scratch);
     }
     Real coarseLowerBound(const Vec3& local) const override { return mesh.coarseLowerBound(local); }
     Real gridError() const override { return mesh.gridError(); }
@@ -158,15 +167,28 @@ enum class Side
     PointsOfB,
 };
 
-void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance& d, Side side,
+// A vertex is named by its index, an edge's passage by the edge's index and the passage's rank
+// along it; a bit for the side keeps the points of the two bodies apart.
+std::uint32_t vertexFeature(std::size_t vertex, Side side)
+{
+    return static_cast<std::uint32_t>(vertex) | (side == Side::PointsOfB ? 0x80000000u : 0u);
+}
+std::uint32_t passageFeature(std::size_t edge, std::size_t passage, Side side)
+{
+    return static_cast<std::uint32_t>(4 * edge + std::min<std::size_t>(passage, 3)) | 0x40000000u |
+           (side == Side::PointsOfB ? 0x80000000u : 0u);
+}
+
+void addContact(const Vec3& pointWorld, const Target& target, const MeshDistance& d, Side side, std::uint32_t feature,
                 std::vector<ContactPoint>& out)
 {
     const Vec3 normal = target.pose.rotation * d.gradient;
-    out.push_back({pointWorld, side == Side::PointsOfA ? normal : Vec3(-normal), d.phi});
+    out.push_back({pointWorld, side == Side::PointsOfA ? normal : Vec3(-normal), d.phi, feature,
+                   side == Side::PointsOfA ? SampleOf::A : SampleOf::B});
 }
 
 // What the edge test knows of each vertex's phi against the target, gathered by verticesAgainst for
-// edgesThrough: `value` is a lower bound of phi, -infinity for a sample point. A bound that costs
+// edgesThrough: `value` is a lower bound of phi, -infinity for a sample point inside the target. A bound that costs
 // something (for a vertex outside the target's box, the target's coarse lower bound; for a vertex in a
 // cluster far from the target, even its distance to the box) waits until an edge needs it. An edge
 // the bounds do not cover is tested for crossings; one they could have covered has none, so weaker
@@ -215,7 +237,7 @@ Real rotationStretch(const Mat3& rotation)
 // Marks Far the vertices of every cluster that lies, with a wide margin for round-off, farther than
 // `reach` from the target's box, so that each of its vertices is: neither a sample point nor in need
 // of a distance query, its bound its distance to the box, and that at least `reach`.
-void markFarClusters(const MeshGeometry& mesh, const Target& target, Real reach, VertexBounds& bounds)
+void markFarClusters(const MeshQueries& mesh, const Target& target, Real reach, VertexBounds& bounds)
 {
     using State = VertexBounds::State;
     const Real stretch = rotationStretch(bounds.rotation);
@@ -236,7 +258,7 @@ void markFarClusters(const MeshGeometry& mesh, const Target& target, Real reach,
         std::fill(bounds.value.begin(), bounds.value.end(), reach);
         return;
     }
-    for (const MeshGeometry::VertexCluster& cluster : mesh.vertexClusters())
+    for (const MeshQueries::VertexCluster& cluster : mesh.vertexClusters())
     {
         const bool far = beyondReach(cluster.centre, cluster.radius);
         for (std::uint32_t i = cluster.first; i < cluster.first + cluster.count; ++i)
@@ -248,12 +270,11 @@ void markFarClusters(const MeshGeometry& mesh, const Target& target, Real reach,
 }
 
 // The vertices (body frame of their body at `pose`) against the target. Fills `bounds` for the
-// edge test: -infinity for the vertices that are sample points, else a lower bound of phi that is
+// edge test: -infinity for the sample points inside the target, else a lower bound of phi that is
 // exact below `edgeReach` (the longest edge), so that only edges truly near the target are cast.
 // `mesh`, when the vertices are a mesh's, lets whole clusters of vertices far from the target pass.
-void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh, const Pose& pose,
-                     const Target& target, Real threshold, Real edgeReach, Side side, VertexBounds& bounds,
-                     std::vector<ContactPoint>& out)
+void verticesAgainst(const std::vector<Vec3>& vertices, const MeshQueries* mesh, const Pose& pose, const Target& target,
+                     Real threshold, Real edgeReach, Side side, VertexBounds& bounds, std::vector<ContactPoint>& out)
 {
     using State = VertexBounds::State;
     bounds.value.resize(vertices.size());
@@ -298,8 +319,10 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
         const MeshDistance d = target.distance(local, threshold);
         if (d.phi < threshold)
         {
-            addContact(pose.toWorld(vertices[v]), target, d, side, out);
-            bounds.value[v] = -kInfinity;
+            addContact(pose.toWorld(vertices[v]), target, d, side, vertexFeature(v, side), out);
+            // inside, the vertex stands for its edges' crossings; outside but within the threshold it
+            // does not, and its exact distance is its bound
+            bounds.value[v] = d.phi < 0.0 ? -kInfinity : d.phi;
         }
         else
         {
@@ -314,19 +337,19 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshGeometry* mesh
 // Edges that pass through the target: the middle of each passage is a sample point.
 template <class Edges>
 void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const Target& target, VertexBounds& bounds,
-                  Side side, std::vector<ContactPoint>& out)
+                  Side side, std::vector<Real>& enterLeave, std::vector<ContactPoint>& out)
 {
-    thread_local std::vector<Real> enterLeave;
     const Mat3& rotation = bounds.rotation; // as verticesAgainst computed it for this pose and target
     const Vec3& shift = bounds.shift;
-    for (const auto& edge : edges)
+    for (std::size_t e = 0; e < std::size(edges); ++e)
     {
+        const auto& edge = edges[e];
         const Vec3& a = vertices[edge[0]];
         const Vec3& b = vertices[edge[1]];
         Real reach = bounds.value[edge[0]] + bounds.value[edge[1]];
         if (reach == -kInfinity)
         {
-            continue; // an end is a sample point already (its bound is exact)
+            continue; // an end is inside, a sample point already
         }
         if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
         {
@@ -352,7 +375,7 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
             const MeshDistance d = target.distance(local, 0.0);
             if (d.phi < 0.0)
             {
-                addContact(target.pose.toWorld(local), target, d, side, out);
+                addContact(target.pose.toWorld(local), target, d, side, passageFeature(e, k / 2, side), out);
             }
         }
     }
@@ -399,162 +422,11 @@ bool boxesApart(const Pose& poseA, const Vec3& lowerA, const Vec3& upperA, const
                               std::max(threshold, Real(0.0)));
 }
 
-} // namespace
-
-void collideMeshPlane(const Mesh& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
-                      std::vector<ContactPoint>& out)
-{
-    // a plane is flat: an edge or face can only cross it if a vertex does
-    const Vec3 normal = poseB.rotation * b.normal;
-    const Real offset = b.offset + normal.dot(poseB.position);
-    if (normal.dot(poseA.position) - offset - a.geometry->boundingRadius() >= threshold)
-    {
-        return;
-    }
-    for (const Vec3& vertex : a.geometry->vertices())
-    {
-        const Vec3 p = poseA.toWorld(vertex);
-        const Real phi = normal.dot(p) - offset;
-        if (phi < threshold)
-        {
-            out.push_back({p, normal, phi});
-        }
-    }
-}
-
-void collideSphereMesh(const Sphere& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
-                       std::vector<ContactPoint>& out)
-{
-    const MeshGeometry& mesh = *b.geometry;
-    if (farApart(poseA, a.radius, poseB, mesh.boundingRadius(), threshold))
-    {
-        return;
-    }
-    // the sphere's distance is its centre's distance less the radius, so the centre's closest point
-    // on the mesh is the deepest contact
-    const Vec3 centre = poseB.toLocal(poseA.position);
-    const MeshDistance nearest = mesh.distance(centre);
-    if (nearest.phi - a.radius >= threshold)
-    {
-        return;
-    }
-    const auto add = [&](const Vec3& gradient, Real centreDistance)
-    {
-        const Real phi = centreDistance - a.radius;
-        const Vec3 normal = poseB.rotation * gradient;
-        out.push_back({poseA.position - normal * (a.radius + 0.5 * phi), normal, phi});
-    };
-    add(nearest.gradient, nearest.phi);
-    if (!std::isfinite(threshold))
-    {
-        return; // asked only for the least distance
-    }
-    // other faces the sphere touches at once (a ball in a groove): each face whose closest point is
-    // inside it, facing a way no point found so far faces
-    const TriangleBvh& bvh = mesh.bvh();
-    thread_local std::vector<std::uint32_t> near;
-    bvh.trianglesNear(centre, a.radius + threshold, near);
-    const std::size_t first = out.size() - 1;
-    for (const std::uint32_t t : near)
-    {
-        const auto& tri = bvh.triangle(t);
-        const TrianglePoint closest =
-            closestPointOnTriangle(centre, bvh.vertex(tri[0]), bvh.vertex(tri[1]), bvh.vertex(tri[2]));
-        const Vec3& faceNormal = bvh.faceNormal(t);
-        const Real height = (centre - closest.point).dot(faceNormal);
-        if (closest.feature != TriangleFeature::Face || height <= 0.0)
-        {
-            continue;
-        }
-        const Vec3 normal = poseB.rotation * faceNormal;
-        const bool newDirection = std::none_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
-                                               [&](const ContactPoint& c) { return c.normal.dot(normal) > 0.985; });
-        if (newDirection)
-        {
-            add(faceNormal, height);
-        }
-    }
-}
-
-void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
-                    std::vector<ContactPoint>& out)
-{
-    const MeshGeometry& mesh = *b.geometry;
-    if (farApart(poseA, a.halfExtents.norm(), poseB, mesh.boundingRadius(), threshold) ||
-        boxesApart(poseA, -a.halfExtents, a.halfExtents, poseB, mesh.lower(), mesh.upper(), threshold))
-    {
-        return;
-    }
-    thread_local VertexBounds cornerBounds;
-    thread_local VertexBounds vertexBounds;
-    const std::vector<Vec3> corners = boxCornersLocal(a);
-    const MeshTarget meshTarget(mesh, poseB);
-    const BoxTarget boxTarget(a, poseA);
-    verticesAgainst(corners, nullptr, poseA, meshTarget, threshold, 2.0 * a.halfExtents.maxCoeff(), Side::PointsOfA,
-                    cornerBounds, out);
-    verticesAgainst(mesh.vertices(), &mesh, poseB, boxTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
-                    vertexBounds, out);
-    edgesThrough(corners, kBoxEdges, meshTarget, cornerBounds, Side::PointsOfA, out);
-    edgesThrough(mesh.vertices(), mesh.featureEdges(), boxTarget, vertexBounds, Side::PointsOfB, out);
-}
-
-void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
-                        std::vector<ContactPoint>& out)
-{
-    const MeshGeometry& mesh = *b.geometry;
-    if (farApart(poseA, a.halfLength + a.radius, poseB, mesh.boundingRadius(), threshold))
-    {
-        return;
-    }
-    // the capsule is a ball swept along its axis: balls at least every half radius along it, each
-    // against the mesh's distance, support it lying on a face; the mesh's vertices and sharp edges
-    // against the capsule's distance catch corners and ridges pressing into its side
-    const int samples = std::max(2, static_cast<int>(std::ceil(4.0 * a.halfLength / a.radius)) + 1);
-    for (int k = 0; k < samples; ++k)
-    {
-        const Real along = a.halfLength * (2.0 * k / (samples - 1) - 1.0);
-        const Vec3 centre = poseA.toWorld(Vec3(0.0, 0.0, along));
-        const MeshDistance d = mesh.distance(poseB.toLocal(centre), threshold + a.radius);
-        const Real phi = d.phi - a.radius;
-        if (phi < threshold)
-        {
-            const Vec3 normal = poseB.rotation * d.gradient;
-            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi});
-        }
-    }
-    thread_local VertexBounds vertexBounds;
-    const CapsuleTarget capsuleTarget(a, poseA);
-    verticesAgainst(mesh.vertices(), &mesh, poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
-                    vertexBounds, out);
-    edgesThrough(mesh.vertices(), mesh.featureEdges(), capsuleTarget, vertexBounds, Side::PointsOfB, out);
-}
-
-namespace
-{
-
-// The vertex-and-edge query of two meshes within reach of each other, which collideMeshMesh answers
-// from memory when it can.
-void computeMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
-                     std::vector<ContactPoint>& out)
-{
-    const MeshGeometry& meshA = *a.geometry;
-    const MeshGeometry& meshB = *b.geometry;
-    thread_local VertexBounds boundsA;
-    thread_local VertexBounds boundsB;
-    const MeshTarget targetA(meshA, poseA);
-    const MeshTarget targetB(meshB, poseB);
-    verticesAgainst(meshA.vertices(), &meshA, poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA,
-                    boundsA, out);
-    verticesAgainst(meshB.vertices(), &meshB, poseB, targetA, threshold, meshB.longestFeatureEdge(), Side::PointsOfB,
-                    boundsB, out);
-    edgesThrough(meshA.vertices(), meshA.featureEdges(), targetB, boundsA, Side::PointsOfA, out);
-    edgesThrough(meshB.vertices(), meshB.featureEdges(), targetA, boundsB, Side::PointsOfB, out);
-}
-
-// The latest mesh-mesh answers of this thread. Within a step the passes ask again about pairs that
-// no impulse has moved since they last asked: about half of all mesh-mesh queries in a forming pile.
-// The query is a pure function of the two meshes, their poses and the threshold, so a repeat,
-// recognised by those inputs bit for bit, is answered from here with exactly what it would compute.
+// The latest mesh-mesh answers of one scratch (one thread). Within a step the passes ask again about
+// pairs that no impulse has moved since they last asked: about half of all mesh-mesh queries in a
+// forming pile. The query is a pure function of the two meshes, their poses and the threshold, so a
+// repeat, recognised by those inputs bit for bit, is answered from here with exactly what it would
+// compute.
 class MeshPairMemo
 {
   public:
@@ -592,6 +464,10 @@ class MeshPairMemo
     /// The stored answer to `key`, or null.
     const std::vector<ContactPoint>* find(const Key& key) const
     {
+        if (m_slots.empty())
+        {
+            return nullptr;
+        }
         const Slot& slot = m_slots[slotOf(key)];
         return slot.used && sameBits(slot.key, key) ? &slot.points : nullptr;
     }
@@ -599,6 +475,10 @@ class MeshPairMemo
     void store(const Key& key, std::vector<ContactPoint>::const_iterator first,
                std::vector<ContactPoint>::const_iterator last)
     {
+        if (m_slots.empty())
+        {
+            m_slots.resize(kSlots); // at the first store: a scratch that never meets two meshes stays small
+        }
         Slot& slot = m_slots[slotOf(key)];
         slot.used = true;
         slot.key = key;
@@ -641,21 +521,198 @@ class MeshPairMemo
         return static_cast<std::size_t>(hash ^ (hash >> 32)) % kSlots;
     }
 
-    std::vector<Slot> m_slots = std::vector<Slot>(kSlots);
+    std::vector<Slot> m_slots; ///< kSlots of them once anything is stored
 };
 
 } // namespace
 
+// What the mesh rows reuse from call to call: every buffer is filled anew before it is read, and the
+// memo answers only what it would compute, so its contents never change an answer.
+struct MeshContactScratch
+{
+    std::array<VertexBounds, 2> bounds; ///< of the points of either body of the pair
+    std::vector<Real> enterLeave;       ///< an edge's passages through the other body
+    std::vector<std::uint32_t> near;    ///< triangles a ball touches
+    MeshQueryScratch queries;
+    MeshPairMemo memo;
+};
+
+// NarrowPhaseScratch's members are defined here, where its mesh part is a complete type.
+NarrowPhaseScratch::NarrowPhaseScratch() = default;
+NarrowPhaseScratch::~NarrowPhaseScratch() = default;
+NarrowPhaseScratch::NarrowPhaseScratch(NarrowPhaseScratch&&) noexcept = default;
+NarrowPhaseScratch& NarrowPhaseScratch::operator=(NarrowPhaseScratch&&) noexcept = default;
+
+MeshContactScratch& NarrowPhaseScratch::mesh()
+{
+    if (!m_mesh)
+    {
+        m_mesh = std::make_unique<MeshContactScratch>();
+    }
+    return *m_mesh;
+}
+
+void collideMeshPlane(const Mesh& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
+                      std::vector<ContactPoint>& out)
+{
+    // a plane is flat: an edge or face can only cross it if a vertex does
+    const Vec3 normal = poseB.rotation * b.normal;
+    const Real offset = b.offset + normal.dot(poseB.position);
+    if (normal.dot(poseA.position) - offset - a.geometry->boundingRadius() >= threshold)
+    {
+        return;
+    }
+    const std::vector<Vec3>& vertices = a.geometry->vertices();
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+        const Vec3 p = poseA.toWorld(vertices[v]);
+        const Real phi = normal.dot(p) - offset;
+        if (phi < threshold)
+        {
+            out.push_back({p, normal, phi, vertexFeature(v, Side::PointsOfA), SampleOf::A});
+        }
+    }
+}
+
+void collideSphereMesh(const Sphere& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                       std::vector<ContactPoint>& out, MeshContactScratch& scratch)
+{
+    const MeshQueries& mesh = MeshQueries::of(*b.geometry);
+    if (farApart(poseA, a.radius, poseB, mesh.boundingRadius(), threshold))
+    {
+        return;
+    }
+    // the sphere's distance is its centre's distance less the radius, so the centre's closest point
+    // on the mesh is the deepest contact
+    const Vec3 centre = poseB.toLocal(poseA.position);
+    const MeshDistance nearest = mesh.distance(centre, kInfinity, scratch.queries);
+    if (nearest.phi - a.radius >= threshold)
+    {
+        return;
+    }
+    const auto add = [&](const Vec3& gradient, Real centreDistance, std::uint32_t feature)
+    {
+        const Real phi = centreDistance - a.radius;
+        const Vec3 normal = poseB.rotation * gradient;
+        out.push_back({poseA.position - normal * (a.radius + 0.5 * phi), normal, phi, feature, SampleOf::Between});
+    };
+    add(nearest.gradient, nearest.phi, 0xFFFFFFFFu);
+    if (!std::isfinite(threshold))
+    {
+        return; // asked only for the least distance
+    }
+    // other faces the sphere touches at once (a ball in a groove): each face whose closest point is
+    // inside it, facing a way no point found so far faces
+    const TriangleBvh& bvh = mesh.bvh();
+    std::vector<std::uint32_t>& near = scratch.near;
+    bvh.trianglesNear(centre, a.radius + threshold, near);
+    const std::size_t first = out.size() - 1;
+    for (const std::uint32_t t : near)
+    {
+        const auto& tri = bvh.triangle(t);
+        const TrianglePoint closest =
+            closestPointOnTriangle(centre, bvh.vertex(tri[0]), bvh.vertex(tri[1]), bvh.vertex(tri[2]));
+        const Vec3& faceNormal = bvh.faceNormal(t);
+        const Real height = (centre - closest.point).dot(faceNormal);
+        if (closest.feature != TriangleFeature::Face || height <= 0.0)
+        {
+            continue;
+        }
+        const Vec3 normal = poseB.rotation * faceNormal;
+        const bool newDirection = std::none_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                                               [&](const ContactPoint& c) { return c.normal.dot(normal) > 0.985; });
+        if (newDirection)
+        {
+            add(faceNormal, height, t);
+        }
+    }
+}
+
+void collideBoxMesh(const Box& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                    std::vector<ContactPoint>& out, MeshContactScratch& scratch)
+{
+    const MeshQueries& mesh = MeshQueries::of(*b.geometry);
+    if (farApart(poseA, a.halfExtents.norm(), poseB, mesh.boundingRadius(), threshold) ||
+        boxesApart(poseA, -a.halfExtents, a.halfExtents, poseB, mesh.lower(), mesh.upper(), threshold))
+    {
+        return;
+    }
+    VertexBounds& cornerBounds = scratch.bounds[0];
+    VertexBounds& vertexBounds = scratch.bounds[1];
+    const std::vector<Vec3> corners = boxCornersLocal(a);
+    const MeshTarget meshTarget(mesh, poseB, scratch.queries);
+    const BoxTarget boxTarget(a, poseA);
+    verticesAgainst(corners, nullptr, poseA, meshTarget, threshold, 2.0 * a.halfExtents.maxCoeff(), Side::PointsOfA,
+                    cornerBounds, out);
+    verticesAgainst(mesh.vertices(), &mesh, poseB, boxTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+                    vertexBounds, out);
+    edgesThrough(corners, kBoxEdges, meshTarget, cornerBounds, Side::PointsOfA, scratch.enterLeave, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), boxTarget, vertexBounds, Side::PointsOfB, scratch.enterLeave,
+                 out);
+}
+
+void collideCapsuleMesh(const Capsule& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                        std::vector<ContactPoint>& out, MeshContactScratch& scratch)
+{
+    const MeshQueries& mesh = MeshQueries::of(*b.geometry);
+    if (farApart(poseA, a.halfLength + a.radius, poseB, mesh.boundingRadius(), threshold))
+    {
+        return;
+    }
+    // the capsule is a ball swept along its axis: balls at least every half radius along it, each
+    // against the mesh's distance, support it lying on a face; the mesh's vertices and sharp edges
+    // against the capsule's distance catch corners and ridges pressing into its side
+    const int samples = std::max(2, static_cast<int>(std::ceil(4.0 * a.halfLength / a.radius)) + 1);
+    for (int k = 0; k < samples; ++k)
+    {
+        const Real along = a.halfLength * (2.0 * k / (samples - 1) - 1.0);
+        const Vec3 centre = poseA.toWorld(Vec3(0.0, 0.0, along));
+        const MeshDistance d = mesh.distance(poseB.toLocal(centre), threshold + a.radius, scratch.queries);
+        const Real phi = d.phi - a.radius;
+        if (phi < threshold)
+        {
+            const Vec3 normal = poseB.rotation * d.gradient;
+            out.push_back({centre - normal * (a.radius + 0.5 * phi), normal, phi, static_cast<std::uint32_t>(k),
+                           SampleOf::Between});
+        }
+    }
+    VertexBounds& vertexBounds = scratch.bounds[1];
+    const CapsuleTarget capsuleTarget(a, poseA);
+    verticesAgainst(mesh.vertices(), &mesh, poseB, capsuleTarget, threshold, mesh.longestFeatureEdge(), Side::PointsOfB,
+                    vertexBounds, out);
+    edgesThrough(mesh.vertices(), mesh.featureEdges(), capsuleTarget, vertexBounds, Side::PointsOfB, scratch.enterLeave,
+                 out);
+}
+
 namespace
 {
+
+// The vertex-and-edge query of two meshes within reach of each other, which collideMeshMesh answers
+// from memory when it can.
+void computeMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
+                     std::vector<ContactPoint>& out, MeshContactScratch& scratch)
+{
+    const MeshQueries& meshA = MeshQueries::of(*a.geometry);
+    const MeshQueries& meshB = MeshQueries::of(*b.geometry);
+    VertexBounds& boundsA = scratch.bounds[0];
+    VertexBounds& boundsB = scratch.bounds[1];
+    const MeshTarget targetA(meshA, poseA, scratch.queries);
+    const MeshTarget targetB(meshB, poseB, scratch.queries);
+    verticesAgainst(meshA.vertices(), &meshA, poseA, targetB, threshold, meshA.longestFeatureEdge(), Side::PointsOfA,
+                    boundsA, out);
+    verticesAgainst(meshB.vertices(), &meshB, poseB, targetA, threshold, meshB.longestFeatureEdge(), Side::PointsOfB,
+                    boundsB, out);
+    edgesThrough(meshA.vertices(), meshA.featureEdges(), targetB, boundsA, Side::PointsOfA, scratch.enterLeave, out);
+    edgesThrough(meshB.vertices(), meshB.featureEdges(), targetA, boundsB, Side::PointsOfB, scratch.enterLeave, out);
+}
 
 // The least of phi over the vertices of `points` (at `pose`) against `target`, or `least` if none is
 // lower. Each phi that is computed is what verticesAgainst computes with an infinite threshold; a
 // vertex is passed over when a lower bound of that phi (its distance to the target's box, or the
 // target's coarse lower bound) is above the least so far by more than round-off, so the result is
 // the same.
-Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeometry& target, const Pose& targetPose,
-                     Real least)
+Real leastOfVertices(const MeshQueries& points, const Pose& pose, const MeshQueries& target, const Pose& targetPose,
+                     Real least, MeshQueryScratch& scratch)
 {
     const Mat3 rotation = targetPose.rotation.transpose() * pose.rotation;
     const Vec3 shift = targetPose.rotation.transpose() * (pose.position - targetPose.position);
@@ -666,7 +723,7 @@ Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeo
     const std::vector<std::uint32_t>& members = points.vertexClusterMembers();
     // phi is at least the distance to the target's box, where that is positive: outside the box
     const auto aboveLeast = [&](Real outside) { return outside > 0.0 && outside > least + slack; };
-    for (const MeshGeometry::VertexCluster& cluster : points.vertexClusters())
+    for (const MeshQueries::VertexCluster& cluster : points.vertexClusters())
     {
         const Vec3 centre = rotation * cluster.centre + shift;
         if (aboveLeast(std::sqrt(squaredDistanceToBox(centre, target.lower(), target.upper())) -
@@ -682,7 +739,7 @@ Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeo
             {
                 continue;
             }
-            least = std::min(least, target.distance(local, kInfinity).phi);
+            least = std::min(least, target.distance(local, kInfinity, scratch).phi);
         }
     }
     return least;
@@ -690,14 +747,17 @@ Real leastOfVertices(const MeshGeometry& points, const Pose& pose, const MeshGeo
 
 } // namespace
 
-Real leastMeshMeshDistance(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB)
+Real leastMeshMeshDistance(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB,
+                           MeshContactScratch& scratch)
 {
-    const Real least = leastOfVertices(*a.geometry, poseA, *b.geometry, poseB, kInfinity);
-    return leastOfVertices(*b.geometry, poseB, *a.geometry, poseA, least);
+    const MeshQueries& meshA = MeshQueries::of(*a.geometry);
+    const MeshQueries& meshB = MeshQueries::of(*b.geometry);
+    const Real least = leastOfVertices(meshA, poseA, meshB, poseB, kInfinity, scratch.queries);
+    return leastOfVertices(meshB, poseB, meshA, poseA, least, scratch.queries);
 }
 
 void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose& poseB, Real threshold,
-                     std::vector<ContactPoint>& out)
+                     std::vector<ContactPoint>& out, MeshContactScratch& scratch)
 {
     // bodies too far apart for any point are told apart before any memory is spent on them
     if (farApart(poseA, a.geometry->boundingRadius(), poseB, b.geometry->boundingRadius(), threshold) ||
@@ -706,7 +766,7 @@ void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose
     {
         return;
     }
-    thread_local MeshPairMemo memo;
+    MeshPairMemo& memo = scratch.memo;
     const MeshPairMemo::Key key = MeshPairMemo::keyOf(*a.geometry, poseA, *b.geometry, poseB, threshold);
     if (const std::vector<ContactPoint>* known = memo.find(key))
     {
@@ -714,7 +774,7 @@ void collideMeshMesh(const Mesh& a, const Pose& poseA, const Mesh& b, const Pose
         return;
     }
     const std::size_t first = out.size();
-    computeMeshMesh(a, poseA, b, poseB, threshold, out);
+    computeMeshMesh(a, poseA, b, poseB, threshold, out, scratch);
     memo.store(key, out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
 }
 

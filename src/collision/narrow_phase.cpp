@@ -63,7 +63,7 @@ void sphereSphere(const Sphere& a, const Pose& poseA, const Sphere& b, const Pos
     }
     const Vec3 normal = distance > 0.0 ? Vec3(between / distance) : Vec3::UnitZ();
     // the middle of the overlap, so that neither body is favoured for lever arms
-    out.push_back({poseB.position + normal * (b.radius + 0.5 * phi), normal, phi});
+    out.push_back({poseB.position + normal * (b.radius + 0.5 * phi), normal, phi, 0, SampleOf::Between});
 }
 
 void spherePlane(const Sphere& a, const Pose& poseA, const Plane& b, const Pose& poseB, Real threshold,
@@ -74,7 +74,7 @@ void spherePlane(const Sphere& a, const Pose& poseA, const Plane& b, const Pose&
     if (phi < threshold)
     {
         // the sphere's own lowest point: the material point that rolls, whatever the overlap
-        out.push_back({poseA.position - plane.normal * a.radius, plane.normal, phi});
+        out.push_back({poseA.position - plane.normal * a.radius, plane.normal, phi, 0, SampleOf::A});
     }
 }
 
@@ -86,7 +86,7 @@ void sphereBox(const Sphere& a, const Pose& poseA, const Box& b, const Pose& pos
     if (phi < threshold)
     {
         const Vec3 normal = poseB.rotation * sample.gradient;
-        out.push_back({poseA.position - normal * a.radius, normal, phi});
+        out.push_back({poseA.position - normal * a.radius, normal, phi, 0, SampleOf::A});
     }
 }
 
@@ -94,85 +94,101 @@ void boxPlane(const Box& a, const Pose& poseA, const Plane& b, const Pose& poseB
               std::vector<ContactPoint>& out)
 {
     const WorldPlane plane = toWorld(b, poseB);
-    for (const Vec3& corner : boxCorners(a, poseA))
+    const std::array<Vec3, 8> corners = boxCorners(a, poseA);
+    for (std::uint32_t i = 0; i < corners.size(); ++i)
     {
-        const Real phi = plane.normal.dot(corner) - plane.offset;
+        const Real phi = plane.normal.dot(corners[i]) - plane.offset;
         if (phi < threshold)
         {
-            out.push_back({corner, plane.normal, phi});
+            out.push_back({corners[i], plane.normal, phi, i, SampleOf::A});
         }
     }
 }
 
 // The rows of the table, each for the order of shapes its routine takes; the other order of the same
 // pair runs the row and turns its normals around (collideShapes).
-void row(const Sphere& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Sphere& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     sphereSphere(a, pa, b, pb, t, out);
 }
-void row(const Sphere& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Sphere& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     sphereBox(a, pa, b, pb, t, out);
 }
-void row(const Sphere& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Sphere& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     spherePlane(a, pa, b, pb, t, out);
 }
-void row(const Sphere& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Sphere& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch& scratch)
 {
-    collideSphereMesh(a, pa, b, pb, t, out);
+    collideSphereMesh(a, pa, b, pb, t, out, scratch.mesh());
 }
-void row(const Box& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Box& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideBoxBox(a, pa, b, pb, t, out);
 }
-void row(const Box& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Box& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     boxPlane(a, pa, b, pb, t, out);
 }
-void row(const Box& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Box& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch& scratch)
 {
-    collideBoxMesh(a, pa, b, pb, t, out);
+    collideBoxMesh(a, pa, b, pb, t, out, scratch.mesh());
 }
-void row(const Mesh& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Mesh& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideMeshPlane(a, pa, b, pb, t, out);
 }
-void row(const Mesh& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Mesh& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch& scratch)
 {
-    collideMeshMesh(a, pa, b, pb, t, out);
+    collideMeshMesh(a, pa, b, pb, t, out, scratch.mesh());
 }
-void row(const Capsule& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Capsule& a, const Pose& pa, const Sphere& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideCapsuleSphere(a, pa, b, pb, t, out);
 }
-void row(const Capsule& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Capsule& a, const Pose& pa, const Box& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideCapsuleBox(a, pa, b, pb, t, out);
 }
-void row(const Capsule& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Capsule& a, const Pose& pa, const Plane& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideCapsulePlane(a, pa, b, pb, t, out);
 }
-void row(const Capsule& a, const Pose& pa, const Capsule& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Capsule& a, const Pose& pa, const Capsule& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch&)
 {
     collideCapsuleCapsule(a, pa, b, pb, t, out);
 }
-void row(const Capsule& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out)
+void row(const Capsule& a, const Pose& pa, const Mesh& b, const Pose& pb, Real t, std::vector<ContactPoint>& out,
+         NarrowPhaseScratch& scratch)
 {
-    collideCapsuleMesh(a, pa, b, pb, t, out);
+    collideCapsuleMesh(a, pa, b, pb, t, out, scratch.mesh());
 }
 
 template <class A, class B>
-concept HasRow = requires(const A& a, const B& b, const Pose& pose, Real t, std::vector<ContactPoint>& out)
+concept HasRow = requires(const A& a, const B& b, const Pose& pose, Real t, std::vector<ContactPoint>& out,
+                          NarrowPhaseScratch& s)
 {
-    row(a, pose, b, pose, t, out);
+    row(a, pose, b, pose, t, out, s);
 };
 
 } // namespace
 
 void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, Real threshold,
-                   std::vector<ContactPoint>& out)
+                   std::vector<ContactPoint>& out, NarrowPhaseScratch& scratch)
 {
     // one jump on the two shapes' kinds (this runs at every impulse of every pass)
     std::visit(
@@ -182,15 +198,18 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
             using B = std::decay_t<decltype(shapeB)>;
             if constexpr (HasRow<A, B>)
             {
-                row(shapeA, poseA, shapeB, poseB, threshold, out);
+                row(shapeA, poseA, shapeB, poseB, threshold, out, scratch);
             }
             else if constexpr (HasRow<B, A>)
             {
                 const std::size_t first = out.size();
-                row(shapeB, poseB, shapeA, poseA, threshold, out);
+                row(shapeB, poseB, shapeA, poseA, threshold, out, scratch);
                 for (std::size_t i = first; i < out.size(); ++i)
                 {
                     out[i].normal = -out[i].normal;
+                    out[i].sample = out[i].sample == SampleOf::A   ? SampleOf::B
+                                    : out[i].sample == SampleOf::B ? SampleOf::A
+                                                                   : SampleOf::Between;
                 }
             }
             // else plane-plane: two static half-spaces never need contact
@@ -199,18 +218,19 @@ void collideShapes(const Shape& a, const Pose& poseA, const Shape& b, const Pose
 }
 
 Real leastSignedDistance(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB,
-                         std::vector<ContactPoint>& scratch)
+                         NarrowPhaseScratch& scratch)
 {
     const auto* ma = std::get_if<Mesh>(&a);
     const auto* mb = std::get_if<Mesh>(&b);
     if (ma != nullptr && mb != nullptr)
     {
-        return leastMeshMeshDistance(*ma, poseA, *mb, poseB);
+        return leastMeshMeshDistance(*ma, poseA, *mb, poseB, scratch.mesh());
     }
-    scratch.clear();
-    collideShapes(a, poseA, b, poseB, std::numeric_limits<Real>::infinity(), scratch);
+    std::vector<ContactPoint>& points = scratch.points;
+    points.clear();
+    collideShapes(a, poseA, b, poseB, std::numeric_limits<Real>::infinity(), points, scratch);
     Real least = std::numeric_limits<Real>::infinity();
-    for (const ContactPoint& point : scratch)
+    for (const ContactPoint& point : points)
     {
         least = std::min(least, point.phi);
     }

@@ -34,7 +34,8 @@ void updateDerivedQuantities(RigidBody& body)
         body.angularVelocity.setZero();
         return;
     }
-    body.invInertiaWorld = body.rotation * body.invPrincipalInertia.asDiagonal() * body.rotation.transpose();
+    const Mat3 axes = body.principalRotation();
+    body.invInertiaWorld = axes * body.invPrincipalInertia.asDiagonal() * axes.transpose();
     body.angularVelocity = body.invInertiaWorld * body.angularMomentum;
 }
 

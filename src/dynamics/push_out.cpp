@@ -25,7 +25,6 @@
 // moves as far as the overlap the push clears; the rest of a wedge is cleared by the next pushes.
 #include "dynamics/push_out.hpp"
 
-#include "collision/narrow_phase.hpp"
 #include "dynamics/integrate.hpp"
 
 #include <algorithm>
@@ -146,17 +145,9 @@ Real keptFraction(const PushedBody& push, const RigidBody& body, Real reach, Rea
 
 } // namespace
 
-bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real allowance, Real reach,
+bool pushOutOfSupports(RigidBody& body, const std::vector<ContactPoint>& points, Real allowance, Real reach,
                        PushOutScratch& scratch)
 {
-    std::vector<ContactPoint>& points = scratch.points;
-    points.clear();
-    const Pose pose = body.pose();
-    for (const Support& support : supports)
-    {
-        // the normal points from the support toward the body: the direction the body must go
-        collideShapes(body.shape, pose, support.body->shape, support.body->pose(), 0.0, points);
-    }
     const Real depth = deepestOf(points);
     if (!(depth > allowance))
     {
@@ -168,11 +159,9 @@ bool pushOutOfSupports(RigidBody& body, std::span<const Support> supports, Real 
     return movePose(body, push, keptFraction(push, body, reach, depth));
 }
 
-bool pushApart(RigidBody& a, RigidBody& b, Real allowance, Real reachA, Real reachB, PushOutScratch& scratch)
+bool pushApart(RigidBody& a, RigidBody& b, const std::vector<ContactPoint>& points, Real allowance, Real reachA,
+               Real reachB, PushOutScratch& scratch)
 {
-    std::vector<ContactPoint>& points = scratch.points;
-    points.clear();
-    collideShapes(a.shape, a.pose(), b.shape, b.pose(), 0.0, points);
     const Real depth = deepestOf(points);
     if (!(depth > allowance))
     {

@@ -48,10 +48,24 @@ struct RigidBody
     int level = -1;           ///< contact-graph level this step; -1 for static bodies
     bool frozen = false;      ///< treated as infinite mass during shock propagation
 
+    // set through the World API (world/world.cpp): mass properties, loads, filtering, removal
+    /// Principal axes of inertia in the body frame, as columns: I_body = inertiaAxes diag(I) inertiaAxes^T.
+    /// The identity (and principalAxesAligned true) unless an inertia tensor with products of inertia was set.
+    Mat3 inertiaAxes = Mat3::Identity();
+    bool principalAxesAligned = true;
+    Vec3 force = Vec3::Zero();        ///< N, world frame, through the centre of mass; for the next step
+    Vec3 torque = Vec3::Zero();       ///< N m, world frame; for the next step
+    Vec3 acceleration = Vec3::Zero(); ///< this step's g + force / m, set when the step begins; zero if static
+    std::uint32_t collisionGroup = 1;
+    std::uint32_t collisionMask = 0xffffffffU;
+    bool removed = false; ///< taken out of the world: static, in no pair, its index never reused
+
     /// Static, or frozen by shock propagation: impulses do not move it.
     bool immovable() const { return !dynamic || frozen; }
 
     Pose pose() const { return {position, orientation, rotation}; }
+    /// World frame from the principal axes of inertia: `rotation` unless they differ from the body axes.
+    Mat3 principalRotation() const { return principalAxesAligned ? rotation : Mat3(rotation * inertiaAxes); }
     /// Velocity of the material point at world point p, with the body placed at `at`.
     Vec3 pointVelocity(const Vec3& p, const Pose& at) const
     {

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Preparing a solid mesh: welding, validation, mass properties, body frame, hierarchy and grid.
-#include "geometry/box_queries.hpp"
-#include "geometry/signed_distance_grid.hpp"
-#include "geometry/triangle_bvh.hpp"
+// Preparing a solid mesh: welding, validation, mass properties and body frame; the hierarchy, grid,
+// feature edges and vertex clusters are the queries' (mesh_queries.cpp).
+#include "geometry/mesh_queries.hpp"
 
 #include <impulse/mesh.hpp>
 
@@ -10,9 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -20,9 +17,6 @@ namespace impulse
 {
 namespace
 {
-
-// Within this many grid cells of the surface, normals average the nearest faces (distanceFrom).
-constexpr Real kSurfaceBand = 0.1;
 
 std::string describe(const Vec3& v)
 {
@@ -302,205 +296,19 @@ std::shared_ptr<const MeshGeometry> MeshGeometry::build(const TriangleMesh& sour
         geometry->m_upper = geometry->m_upper.cwiseMax(v);
         geometry->m_boundingRadius = std::max(geometry->m_boundingRadius, v.norm());
     }
-    // each edge is met twice, once per direction: keep the ascending one, with both faces' normals
-    std::map<std::array<std::uint32_t, 2>, std::array<Vec3, 2>> faceNormals;
-    for (const auto& tri : body.triangles)
-    {
-        const Vec3 normal = (body.vertices[tri[1]] - body.vertices[tri[0]])
-                                .cross(body.vertices[tri[2]] - body.vertices[tri[0]])
-                                .normalized();
-        for (int k = 0; k < 3; ++k)
-        {
-            const std::uint32_t from = tri[k];
-            const std::uint32_t to = tri[(k + 1) % 3];
-            faceNormals[{std::min(from, to), std::max(from, to)}][from < to ? 0 : 1] = normal;
-        }
-    }
-    const Real featureCosine = std::cos(kFeatureAngleDegrees * std::numbers::pi / 180.0);
-    for (const auto& [edge, normals] : faceNormals)
-    {
-        geometry->m_edges.push_back(edge);
-        if (normals[0].dot(normals[1]) < featureCosine)
-        {
-            geometry->m_featureEdges.push_back(edge);
-            geometry->m_longestFeatureEdge =
-                std::max(geometry->m_longestFeatureEdge, (body.vertices[edge[0]] - body.vertices[edge[1]]).norm());
-        }
-    }
     const int resolution = options.resolution > 0
                                ? options.resolution
                                : defaultResolution(body, (geometry->m_upper - geometry->m_lower).maxCoeff());
-    geometry->m_bvh = std::make_unique<TriangleBvh>(body);
-    geometry->m_grid =
-        std::make_unique<SignedDistanceGrid>(*geometry->m_bvh, geometry->m_lower, geometry->m_upper, resolution);
+    geometry->m_queries = std::make_unique<const MeshQueries>(*geometry, body, resolution);
     geometry->m_vertices = std::move(body.vertices);
     geometry->m_triangles = std::move(body.triangles);
-    geometry->m_vertexClusterMembers.resize(geometry->m_vertices.size());
-    std::iota(geometry->m_vertexClusterMembers.begin(), geometry->m_vertexClusterMembers.end(), 0u);
-    geometry->buildClusters(0, static_cast<std::uint32_t>(geometry->m_vertices.size()));
     return geometry;
 }
 
-void MeshGeometry::buildClusters(std::uint32_t first, std::uint32_t count)
+MeshDistance MeshGeometry::signedDistance(const Vec3& pointBody) const
 {
-    const auto begin = m_vertexClusterMembers.begin() + first;
-    const auto end = begin + count;
-    Vec3 lower = m_vertices[*begin];
-    Vec3 upper = lower;
-    for (auto v = begin; v != end; ++v)
-    {
-        lower = lower.cwiseMin(m_vertices[*v]);
-        upper = upper.cwiseMax(m_vertices[*v]);
-    }
-    if (count <= kClusterSize)
-    {
-        VertexCluster cluster;
-        cluster.centre = 0.5 * (lower + upper);
-        for (auto v = begin; v != end; ++v)
-        {
-            cluster.radius = std::max(cluster.radius, (m_vertices[*v] - cluster.centre).norm());
-        }
-        cluster.first = first;
-        cluster.count = count;
-        m_vertexClusters.push_back(cluster);
-        return;
-    }
-    int axis = 0;
-    (upper - lower).maxCoeff(&axis);
-    const std::uint32_t half = count / 2;
-    std::nth_element(begin, begin + half, end,
-                     [&](std::uint32_t x, std::uint32_t y) {
-                         return m_vertices[x][axis] < m_vertices[y][axis] ||
-                                (m_vertices[x][axis] == m_vertices[y][axis] && x < y);
-                     });
-    buildClusters(first, half);
-    buildClusters(first + half, count - half);
-}
-
-MeshDistance MeshGeometry::gridDistance(const Vec3& pointBody) const
-{
-    return m_grid->sample(pointBody);
-}
-
-Real MeshGeometry::coarseLowerBound(const Vec3& pointBody) const
-{
-    return lowerBoundFromGrid(pointBody, m_grid->samplePhi(pointBody));
-}
-
-Real MeshGeometry::lowerBoundFromGrid(const Vec3& pointBody, Real gridPhi) const
-{
-    // outside the grid its extension is an upper bound of phi; the distance to the box is a lower one
-    return m_grid->contains(pointBody) ? gridPhi - gridError()
-                                       : std::sqrt(squaredDistanceToBox(pointBody, m_lower, m_upper));
-}
-
-MeshDistance MeshGeometry::exactDistance(const Vec3& pointBody) const
-{
-    return distanceFrom(pointBody, m_bvh->closestPoint(pointBody, std::numeric_limits<Real>::infinity()));
-}
-
-MeshDistance MeshGeometry::distanceFrom(const Vec3& pointBody, const SurfacePoint& closest) const
-{
-    MeshDistance result;
-    result.phi = TriangleBvh::signedDistance(pointBody, closest);
-    result.exact = true;
-    if (closest.distance > kSurfaceBand * m_grid->cellSize())
-    {
-        // the gradient of the exact distance points from the closest point
-        result.gradient = (pointBody - closest.point) / result.phi;
-        return result;
-    }
-    // Near the surface that direction turns with round-off wherever faces meet: a point a
-    // nanometre inside a ridge is nearest one face or the other, and two tessellated tori resting
-    // ridge on ridge would push each other sideways by a facet's tilt. There the normal is the mean
-    // of the distinct normals of every face as near as the nearest (to a thousandth of a cell):
-    // one face's normal on a face, the ridge's bisector on a ridge.
-    thread_local std::vector<std::uint32_t> near;
-    m_bvh->trianglesNear(pointBody, closest.distance + 1e-3 * m_grid->cellSize(), near);
-    thread_local std::vector<Vec3> normals;
-    normals.clear();
-    for (const std::uint32_t t : near)
-    {
-        const Vec3& normal = m_bvh->faceNormal(t);
-        if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& n) { return n.isApprox(normal, 1e-9); }))
-        {
-            normals.push_back(normal);
-        }
-    }
-    Vec3 sum = Vec3::Zero();
-    for (const Vec3& n : normals)
-    {
-        sum += n;
-    }
-    const Real length = sum.norm();
-    result.gradient = length > 1e-6 * static_cast<Real>(normals.size()) ? Vec3(sum / length)
-                                                                        : Vec3(closest.pseudonormal.normalized());
-    return result;
-}
-
-MeshDistance MeshGeometry::distance(const Vec3& pointBody, Real threshold) const
-{
-    // the grid's gradient only where its value is the answer
-    const SignedDistanceGrid::Stencil coarse = m_grid->stencil(pointBody);
-    const Real cell = m_grid->cellSize();
-    if (lowerBoundFromGrid(pointBody, coarse.phi) >= threshold || coarse.phi < -3.0 * cell)
-    {
-        return SignedDistanceGrid::withGradient(coarse); // certainly not touching, or deep inside where
-                                                         // the grid's normal serves
-    }
-    const SurfacePoint closest = m_bvh->closestPoint(pointBody, searchRadius(coarse.phi));
-    return closest.found ? distanceFrom(pointBody, closest) : SignedDistanceGrid::withGradient(coarse);
-}
-
-Real MeshGeometry::searchRadius(Real gridPhi) const
-{
-    // the grid is within gridError() of the truth: a search this wide finds the closest triangle
-    return std::abs(gridPhi) + gridError() + m_grid->cellSize();
-}
-
-Real MeshGeometry::gridError() const
-{
-    // Within the exact band phi is 1-Lipschitz and exact at the corners of a cell, so the
-    // interpolant is off by at most the weighted distance to the corners: sqrt(3)/2 of a cell at
-    // the centre, less elsewhere. Beyond the band every corner is over two cells from the surface.
-    return m_grid->cellSize();
-}
-
-void MeshGeometry::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const
-{
-    thread_local std::vector<SegmentCrossing> crossings;
-    m_bvh->segmentCrossings(a, b, crossings);
-    enterLeave.clear();
-    bool inside = false;
-    for (const SegmentCrossing& crossing : crossings)
-    {
-        // a segment through a shared edge or corner meets several triangles at one t: only the
-        // first entering and the first leaving crossing count
-        if (!inside && crossing.entering)
-        {
-            enterLeave.push_back(crossing.t);
-            inside = true;
-        }
-        else if (inside && !crossing.entering)
-        {
-            enterLeave.push_back(crossing.t);
-            inside = false;
-        }
-    }
-    if (inside)
-    {
-        enterLeave.pop_back(); // the segment ends inside: no complete passage through
-    }
-}
-
-Real MeshGeometry::cellSize() const
-{
-    return m_grid->cellSize();
-}
-
-std::array<int, 3> MeshGeometry::gridSamples() const
-{
-    return m_grid->samples();
+    MeshQueryScratch scratch;
+    return m_queries->exactDistance(pointBody, scratch);
 }
 
 } // namespace impulse

@@ -3,36 +3,35 @@
 //
 // The step is split so that collision and contact never need a velocity threshold (GBF03 sec. 5):
 //
-//   S0 = (x, q) of every body, kept untouched until the last stage
-//   1. candidate pairs       bounds over S0 and the predicted pose
-//   2. collision pass        elastic (material eps) on poses predicted with v + dt a,
-//                            responding to v: a body at rest is not approaching, so it never bounces
+//   S0 = (x, q) of every body, kept untouched until the position update
+//   1. candidate pairs       bounds over S0 and the predicted pose; the contact layer follows them
+//   2. collision pass        elastic (material eps) on poses predicted with v + dt a, detected
+//                            exactly, responding to v: a body at rest is not approaching, so it never
+//                            bounces; pairs whose cached points show nothing that can collide are
+//                            passed over
 //   3. contact graph         probe each body with v + dt a: who rests on whom; levels bottom-up
 //   4. velocity update       v += dt a
-//   5. contact pass          inelastic, eps ramped -1+1/n ... 0, on poses predicted with v,
-//                            pairs visited level by level from the ground up
-//   6. shock propagation     one more sweep with eps = 0, level by level, lower levels frozen
+//   5. contact pass          inelastic, on poses predicted with v: the cached points' rows, loads
+//                            warm-started from the last step, projected Gauss-Seidel up the levels
+//   6. shock propagation     once more up the levels, every lower level frozen, each level's rows
+//                            solved to round-off: stacks stand, and what may tip tips
 //   7. position update       x += dt v, q = exp(dt w) q, w = I(q)^-1 L
 //   8. push-out              overlaps deeper than an allowance moved apart, positions only,
 //                            level by level with lower levels held still (guendelman.md sec. 9)
 //
-// Each pass sweeps in a fixed order and stops early after a sweep that applies no impulse. The
-// collision pass resolves pair by pair; the contact pass and shock propagation go level by level,
-// resolving each body against all it rests on as one contact patch (dynamics/contact_patch.cpp),
-// with the paper's deepest approaching point as the fallback (dynamics/pair_resolution.cpp).
-//
 // The traditional order (Scheme::Traditional) reuses the same stages for comparison: update
 // velocities and positions first, then resolve collisions and contacts at the new poses.
-#include "collision/narrow_phase.hpp"
 #include "dynamics/integrate.hpp"
-#include "dynamics/pair_resolution.hpp"
+#include "dynamics/rigid_patch.hpp"
 #include "support/parallel.hpp"
 #include "world/world_impl.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <span>
+#include <stdexcept>
 
 namespace impulse
 {
@@ -42,6 +41,10 @@ namespace
 // Push-out's two-way relaxation of what the level sweeps leave: in the thousand-body piles a few
 // sweeps clear it; the cap bounds the cost when a pile is still being compressed
 constexpr int kPushOutSettleSweeps = 16;
+
+// Times the broad phase is run again in a step for bodies the collision pass sped beyond their boxes
+// (each time on the grown margins: a chain of hits passes speed on one body per pass)
+constexpr int kEscapedBoxPasses = 4;
 
 PassSettings baseSettings(const StepOptions& options, const Vec3& gravity)
 {
@@ -81,21 +84,47 @@ PassSettings atCurrentPoseSettings(const StepOptions& options, const Vec3& gravi
     return settings;
 }
 
-// How far a body might travel this step beyond its predicted pose once impulses have changed its
-// velocity: twice the fastest surface speed in the world (an elastic hit from a heavy body at most
-// doubles a speed), over one step.
-Real broadPhaseMargin(const std::vector<RigidBody>& bodies, const StepOptions& options, const Vec3& gravity)
+// The largest acceleration of a body this step, applied forces included, and at least gravity's.
+Real strongestAcceleration(const std::vector<RigidBody>& bodies, const Vec3& gravity)
 {
-    Real fastest = 0.0;
+    Real strongest = gravity.norm();
     for (const RigidBody& body : bodies)
     {
         if (body.dynamic)
         {
-            fastest = std::max(fastest, body.linearVelocity.norm() + body.angularVelocity.norm() * body.boundingRadius);
+            strongest = std::max(strongest, body.acceleration.norm());
         }
     }
-    fastest += options.dt * gravity.norm();
-    return 2.0 * options.dt * fastest + options.contactThickness;
+    return strongest;
+}
+
+// How far a body might travel this step beyond the poses its box covers once impulses have changed
+// its velocity: twice its own fastest surface speed (an elastic hit from a heavier body at most
+// doubles a speed), with what its acceleration adds, over one step. A body that an impulse speeds
+// beyond that is caught after the collision pass (WorldImpl::widenEscapedBoxes).
+Real ownMargin(const RigidBody& body, const StepOptions& options)
+{
+    if (!body.dynamic)
+    {
+        return 0.0;
+    }
+    const Real speed = body.linearVelocity.norm() + body.angularVelocity.norm() * body.boundingRadius +
+                       options.dt * body.acceleration.norm();
+    return 2.0 * options.dt * speed + options.contactThickness;
+}
+
+// A speed that sets the scale of an island's round-off: its fastest surface speed plus what gravity
+// adds in one step.
+Real velocityScale(const Island& island, const std::vector<SolverBody>& solver, const std::vector<RigidBody>& bodies,
+                   Real gravityStep)
+{
+    Real fastest = 0.0;
+    for (const std::uint32_t i : island.bodies)
+    {
+        fastest = std::max(fastest, solver[i].linearVelocity.norm() +
+                                        solver[i].angularVelocity.norm() * bodies[i].boundingRadius);
+    }
+    return fastest + gravityStep;
 }
 
 // Wall time between laps, for StepStats::milliseconds.
@@ -113,14 +142,47 @@ class StageClock
     std::chrono::steady_clock::time_point m_last = std::chrono::steady_clock::now();
 };
 
+// The bodies of a row that move while its level is solved: the level's own, one side of a support
+// and both of a two-way pair.
+std::uint8_t levelMovableOf(const RigidBody& a, const RigidBody& b)
+{
+    const int level = std::max(a.level, b.level);
+    const auto moves = [&](const RigidBody& body, RowMovable bit)
+    { return body.dynamic && body.level == level ? bit : 0; };
+    return static_cast<std::uint8_t>(moves(a, kMovesA) | moves(b, kMovesB));
+}
+
+// Sweeps of the contact pass for an island of `rows` rows: at least `sweeps`, and more for a small
+// island, up to what an island of kBudgetRows rows is given, at most kMostSweepsFactor times `sweeps`.
+// The loads of a tall, narrow stack converge over hundreds of sweeps (its bending and its tipping are
+// the slowest modes of Gauss-Seidel), and until they have, shock propagation holds it under loads
+// from above that are not yet right: a tower leaning past its edge would stand. Such islands are
+// small, so the sweeps cost little; large ones (a pile) get `sweeps`.
+constexpr std::size_t kBudgetRows = 1000;
+constexpr int kMostSweepsFactor = 20;
+
+int sweepBudget(std::size_t rows, int sweeps)
+{
+    const std::size_t budget = static_cast<std::size_t>(sweeps) * kBudgetRows / std::max<std::size_t>(rows, 1);
+    return static_cast<int>(std::clamp<std::size_t>(budget, static_cast<std::size_t>(sweeps),
+                                                    static_cast<std::size_t>(sweeps) * kMostSweepsFactor));
+}
+
+bool detectedExactly(const Shape& shape)
+{
+    return std::holds_alternative<Sphere>(shape) || std::holds_alternative<Capsule>(shape);
+}
+
 } // namespace
 
 void WorldImpl::step(const StepOptions& options)
 {
     stats = {};
+    beginLoads();
     threads = resolveThreadCount(options.threads);
     stats.threads = threads;
     scratch.resize(static_cast<std::size_t>(threads));
+    contacts.setVerification(options.verifyContacts);
     if (options.scheme == Scheme::Traditional)
     {
         stepTraditional(options);
@@ -129,6 +191,8 @@ void WorldImpl::step(const StepOptions& options)
     {
         stepGuendelman(options);
     }
+    clearLoads();
+    finishStep(options);
     time += options.dt;
 }
 
@@ -137,10 +201,22 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     const PassSettings collision = collisionSettings(options, def.gravity);
     const PassSettings contact = contactSettings(options, def.gravity);
     StageClock clock;
+    broadMargins.assign(bodies.size(), 0.0);
     findCandidatePairs(options, collision);
     buildIslands();
+    refreshContacts(options, 0.0);
     clock.lap(stats.milliseconds.candidatePairs);
     solveCollisions(options, collision);
+    // a body an impulse sent beyond its box may reach bodies it was not paired with: find its pairs
+    // again with room for its new speed, and give the new pairs their collision pass
+    for (int again = 0; again < kEscapedBoxPasses && widenEscapedBoxes(options); ++again)
+    {
+        findCandidatePairs(options, collision);
+        buildIslands();
+        refreshContacts(options, 0.0);
+        solveCollisions(options, collision);
+        ++stats.broadPhaseRepeats;
+    }
     clock.lap(stats.milliseconds.collisionPass);
     buildContactGraph(options);
     clock.lap(stats.milliseconds.contactGraph);
@@ -151,6 +227,7 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     {
         propagateShock(options, contact);
     }
+    storeContactResults();
     clock.lap(stats.milliseconds.shockPropagation);
     updatePositions(options);
     clock.lap(stats.milliseconds.positionUpdate);
@@ -161,15 +238,60 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     clock.lap(stats.milliseconds.pushOut);
 }
 
+bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
+{
+    // where a body's poses and its own margin at its new velocity no longer fit in its box
+    bool escaped = false;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        const RigidBody& body = bodies[i];
+        if (!body.dynamic || body.removed || std::holds_alternative<Plane>(body.shape))
+        {
+            continue;
+        }
+        const Real margin = ownMargin(body, options);
+        const Aabb now = shapeBounds(body.shape, body.pose());
+        const Aabb next = shapeBounds(body.shape, body.predicted);
+        const Aabb& box = broadPhase.bounds(i);
+        const bool fits = ((now.lower.cwiseMin(next.lower).array() - margin) >= box.lower.array()).all() &&
+                          ((now.upper.cwiseMax(next.upper).array() + margin) <= box.upper.array()).all();
+        if (!fits)
+        {
+            broadMargins[i] = std::max(broadMargins[i], margin);
+            escaped = true;
+        }
+    }
+    return escaped;
+}
+
 void WorldImpl::stepTraditional(const StepOptions& options)
 {
+    broadMargins.assign(bodies.size(), 0.0);
     updateVelocities(options);
     updatePositions(options);
     findCandidatePairs(options, atCurrentPoseSettings(options, def.gravity, 0.0));
     buildIslands();
+    refreshContacts(options, 0.0);
     assignSingleLevel();
     solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0));
     solveContacts(options, atCurrentPoseSettings(options, def.gravity, options.contactThickness));
+    storeContactResults();
+}
+
+void WorldImpl::finishStep(const StepOptions& options)
+{
+    const ContactCache::Counters counters = contacts.takeCounters();
+    stats.narrowPhaseCalls = counters.narrowPhaseCalls;
+    stats.contactCaptures = counters.captures;
+    if (options.verifyContacts)
+    {
+        std::string first;
+        if (const int violations = contacts.takeViolations(first); violations > 0)
+        {
+            throw std::logic_error(std::to_string(violations) + " contact cache discrepancies in the step at t = " +
+                                   std::to_string(time) + "; the first: " + first);
+        }
+    }
 }
 
 void WorldImpl::predictAll(const PassSettings& settings)
@@ -177,16 +299,64 @@ void WorldImpl::predictAll(const PassSettings& settings)
     parallelForEach(threads, bodies.size(), [&](std::size_t i) { predictBody(bodies[i], settings); });
 }
 
+PlacedShape WorldImpl::placed(std::uint32_t body, const Pose& pose) const
+{
+    return {&bodies[body].shape, pose, bodies[body].boundingRadius};
+}
+
+Real WorldImpl::pairReach(std::uint32_t k, const StepOptions& options) const
+{
+    // twice what the pair's points can move relative to each other in a step at today's velocities,
+    // at least a tenth of a millimetre (a twentieth of the smaller body), at most a quarter of it
+    const RigidBody& a = bodies[pairs[k].a];
+    const RigidBody& b = bodies[pairs[k].b];
+    const auto spin = [](const RigidBody& body)
+    { return body.dynamic ? body.angularVelocity.norm() * body.boundingRadius : 0.0; };
+    const Real speed =
+        (a.linearVelocity - b.linearVelocity).norm() + spin(a) + spin(b) + options.dt * def.gravity.norm();
+    const Real smaller = std::min(a.boundingRadius, b.boundingRadius);
+    const Real least = std::min(1e-4, 0.05 * smaller);
+    return std::clamp(least + 2.0 * options.dt * speed, least, std::max(least, 0.25 * smaller));
+}
+
 void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSettings& settings)
 {
     predictAll(settings);
-    broadPhase.findPairs(bodies, broadPhaseMargin(bodies, options, def.gravity), threads, pairs);
+    broadBodies.resize(bodies.size());
+    broadMargins.resize(bodies.size());
+    parallelForEach(threads, bodies.size(),
+                    [&](std::size_t i)
+                    {
+                        const RigidBody& body = bodies[i];
+                        broadMargins[i] = std::max(broadMargins[i], ownMargin(body, options));
+                        broadBodies[i] = {&body.shape,     body.pose(),  body.predicted, body.boundingRadius,
+                                          broadMargins[i], body.dynamic, !body.removed};
+                    });
+    broadPhase.findPairs(broadBodies, threads, pairs);
+    dropFilteredPairs();
     pairCoefficients.clear();
     for (const BodyPair& pair : pairs)
     {
         pairCoefficients.push_back(coefficients(bodies[pair.a].material, bodies[pair.b].material));
     }
+    contacts.follow(pairs, [&](std::uint32_t a, std::uint32_t b)
+                    { return detectedExactly(bodies[a].shape) || detectedExactly(bodies[b].shape); });
     stats.candidatePairs = static_cast<int>(pairs.size());
+}
+
+void WorldImpl::refreshContacts(const StepOptions& options, Real extra)
+{
+    // every entry made usable at the predicted poses: kept where the pair has moved within its
+    // reach since capture, captured anew elsewhere
+    parallelFor(threads, pairs.size(),
+                [&](std::size_t k, int thread)
+                {
+                    const BodyPair& pair = pairs[k];
+                    contacts.refresh(k, placed(pair.a, bodies[pair.a].predicted),
+                                     placed(pair.b, bodies[pair.b].predicted), options.contactThickness,
+                                     pairReach(static_cast<std::uint32_t>(k), options), extra,
+                                     scratch[static_cast<std::size_t>(thread)].contact);
+                });
 }
 
 void WorldImpl::buildIslands()
@@ -261,7 +431,9 @@ void WorldImpl::buildIslands()
 void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& settings)
 {
     predictAll(settings);
-    beginSweepingPass();
+    // stamps of earlier passes (and of pairs that had other indices in earlier steps) never hold
+    ++pass;
+    quietPairs.resize(pairs.size());
     std::vector<int> applied(islands.size(), 0);
     std::vector<int> sweeps(islands.size(), 0);
     parallelFor(threads, islands.size(),
@@ -271,7 +443,7 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
                     for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
                     {
                         const int impulses =
-                            sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], settings);
+                            sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], options, settings);
                         applied[i] += impulses;
                         ++sweeps[i];
                         if (impulses == 0)
@@ -287,14 +459,19 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
     }
 }
 
-void WorldImpl::beginSweepingPass()
+int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const StepOptions& options,
+                          const PassSettings& settings)
 {
-    // stamps of earlier passes (and of pairs that had other indices in earlier steps) never hold
-    ++pass;
-    quietPairs.resize(pairs.size());
+    int applied = 0;
+    for (const std::uint32_t k : island.pairs)
+    {
+        applied += resolveUnlessQuiet(k, local, options, settings);
+    }
+    return applied;
 }
 
-int WorldImpl::resolveUnlessQuiet(std::uint32_t k, Real eps, ThreadScratch& local, const PassSettings& settings)
+int WorldImpl::resolveUnlessQuiet(std::uint32_t k, ThreadScratch& local, const StepOptions& options,
+                                  const PassSettings& settings)
 {
     RigidBody& a = bodies[pairs[k].a];
     RigidBody& b = bodies[pairs[k].b];
@@ -302,19 +479,35 @@ int WorldImpl::resolveUnlessQuiet(std::uint32_t k, Real eps, ThreadScratch& loca
     {
         return 0;
     }
-    const Resolution done = resolvePair(a, b, eps, pairCoefficients[k].friction, settings, local.points);
+    const QuietStamp quiet{pass, a.motion, b.motion};
+    // The cached points screen the pair: where none lies within what the motion since capture could
+    // hide (a separation may be off by twice that) and approaches, no exact point collides either.
+    ContactEntry& entry = contacts.entry(k);
+    if (!entry.exact && entry.captured)
+    {
+        const PlacedShape pa = placed(pairs[k].a, a.predicted);
+        const PlacedShape pb = placed(pairs[k].b, b.predicted);
+        const Real motion = contacts.motionSinceCapture(entry, pa, pb);
+        if (3.0 * motion <= entry.reach + options.contactThickness)
+        {
+            local.points.clear();
+            contacts.pointsAt(k, pa, pb, 2.0 * motion + 1e-12, options.contactThickness, pairReach(k, options),
+                              local.points, local.contact);
+            const bool approaching =
+                std::any_of(local.points.begin(), local.points.end(),
+                            [&](const ContactPoint& point)
+                            { return approachSpeed(a, a.predicted, b, b.predicted, point, settings) < 0.0; });
+            if (!approaching)
+            {
+                quietPairs[k] = quiet;
+                return 0;
+            }
+        }
+    }
+    const Resolution done = resolveCollision(a, b, pairCoefficients[k].restitution, pairCoefficients[k].friction,
+                                             settings, local.contact, local.solver);
     quietPairs[k] = done.quiet ? QuietStamp{pass, a.motion, b.motion} : QuietStamp{};
     return done.impulses;
-}
-
-int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const PassSettings& settings)
-{
-    int applied = 0;
-    for (const std::uint32_t k : island.pairs)
-    {
-        applied += resolveUnlessQuiet(k, pairCoefficients[k].restitution, local, settings);
-    }
-    return applied;
 }
 
 namespace
@@ -328,12 +521,8 @@ enum PairProbe : std::uint8_t
     kTouching = 4, ///< within the contact thickness at the poses predicted with the old velocities
 };
 
-// Least signed distance of the pair at the given poses, or +infinity without points.
-Real leastPhi(const RigidBody& probe, const Pose& probePose, const RigidBody& other, Real threshold,
-              std::vector<ContactPoint>& points)
+Real leastPhi(const std::vector<ContactPoint>& points)
 {
-    points.clear();
-    collideShapes(probe.shape, probePose, other.shape, other.predicted, threshold, points);
     Real least = std::numeric_limits<Real>::infinity();
     for (const ContactPoint& point : points)
     {
@@ -345,10 +534,11 @@ Real leastPhi(const RigidBody& probe, const Pose& probePose, const RigidBody& ot
 // Orders `pairs` (ascending indices, as buildIslands leaves them) by level, ties by index: a stable
 // counting sort over levels 0 to `highest`, linear where a comparison sort was a few per cent of a
 // ten-thousand-body step.
-void sortByLevel(std::vector<std::uint32_t>& pairs, const std::vector<int>& pairLevels, int highest)
+void sortByLevel(std::vector<std::uint32_t>& pairs, const std::vector<int>& pairLevels, int highest,
+                 ThreadScratch& local)
 {
-    thread_local std::vector<std::size_t> start;
-    thread_local std::vector<std::uint32_t> sorted;
+    std::vector<std::size_t>& start = local.levelStart;
+    std::vector<std::uint32_t>& sorted = local.sorted;
     start.assign(static_cast<std::size_t>(highest) + 2, 0);
     for (const std::uint32_t k : pairs)
     {
@@ -376,34 +566,44 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     const PassSettings oldVelocity = contactSettings(options, def.gravity);
     PassSettings newVelocity = oldVelocity;
     newVelocity.predictWithAcceleration = true;
-    predictAll(oldVelocity);
-    probePoses.resize(bodies.size());
+    oldPoses.resize(bodies.size());
     parallelForEach(threads, bodies.size(),
-                    [&](std::size_t i) { probePoses[i] = predictedPose(bodies[i], newVelocity); });
+                    [&](std::size_t i) { oldPoses[i] = predictedPose(bodies[i], oldVelocity); });
+    // the new poses are those the contact pass starts from: the contact layer is made usable there,
+    // with what the old poses differ by to spare
+    predictAll(newVelocity);
+    // a probe moves one body of a pair by dt^2 a from where the other is: at most 2 dt^2 |a| apart
+    refreshContacts(options, 2.0 * options.dt * options.dt * strongestAcceleration(bodies, def.gravity));
 
-    // every probe of every pair at once: each reads the predicted poses and writes its own slot
+    // every probe of every pair at once, from the contact layer: each writes its own slot
     pairProbes.assign(pairs.size(), 0);
     parallelFor(threads, pairs.size(),
                 [&](std::size_t k, int thread)
                 {
                     std::vector<ContactPoint>& points = scratch[static_cast<std::size_t>(thread)].points;
-                    // advance `probe` alone with its new velocity: deeper into `other` means it
-                    // rests on it; within the contact thickness at the old poses means touching
-                    const auto probeOn = [&](std::uint32_t p, std::uint32_t other, PairProbe restsOn)
+                    ContactScratch& contactScratch = scratch[static_cast<std::size_t>(thread)].contact;
+                    const BodyPair& pair = pairs[k];
+                    const Real reach = pairReach(static_cast<std::uint32_t>(k), options);
+                    const auto least = [&](const Pose& poseA, const Pose& poseB, Real threshold)
                     {
-                        const RigidBody& probe = bodies[p];
-                        if (!probe.dynamic)
-                        {
-                            return std::uint8_t{0};
-                        }
-                        const Real before =
-                            leastPhi(probe, probe.predicted, bodies[other], options.contactThickness, points);
-                        const Real after = leastPhi(probe, probePoses[p], bodies[other], 0.0, points);
-                        return static_cast<std::uint8_t>((before < options.contactThickness ? kTouching : 0) |
-                                                         (std::min(after, 0.0) < std::min(before, 0.0) ? restsOn : 0));
+                        points.clear();
+                        contacts.pointsAt(k, placed(pair.a, poseA), placed(pair.b, poseB), threshold,
+                                          options.contactThickness, reach, points, contactScratch);
+                        return leastPhi(points);
                     };
-                    std::uint8_t found = probeOn(pairs[k].a, pairs[k].b, kRestsOnB);
-                    found |= probeOn(pairs[k].b, pairs[k].a, kRestsOnA);
+                    const Real before = least(oldPoses[pair.a], oldPoses[pair.b], options.contactThickness);
+                    std::uint8_t found = before < options.contactThickness ? kTouching : 0;
+                    // advance one alone with its new velocity: deeper into the other means it rests on it
+                    if (bodies[pair.a].dynamic &&
+                        std::min(least(bodies[pair.a].predicted, oldPoses[pair.b], 0.0), 0.0) < std::min(before, 0.0))
+                    {
+                        found |= kRestsOnB;
+                    }
+                    if (bodies[pair.b].dynamic &&
+                        std::min(least(oldPoses[pair.a], bodies[pair.b].predicted, 0.0), 0.0) < std::min(before, 0.0))
+                    {
+                        found |= kRestsOnA;
+                    }
                     pairProbes[k] = found;
                 });
     supportEdges.clear();
@@ -443,8 +643,9 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
                 {
-                    sortByLevel(islands[i].pairs, pairLevels, highest);
-                    planLevels(islands[i], scratch[static_cast<std::size_t>(thread)]);
+                    ThreadScratch& local = scratch[static_cast<std::size_t>(thread)];
+                    sortByLevel(islands[i].pairs, pairLevels, highest, local);
+                    planLevels(islands[i], local);
                 });
 }
 
@@ -470,74 +671,27 @@ void WorldImpl::updateVelocities(const StepOptions& options)
     {
         if (body.dynamic)
         {
-            body.linearVelocity += options.dt * def.gravity;
+            body.linearVelocity += options.dt * body.acceleration; // gravity and the applied force
+            if (!body.torque.isZero(0.0))
+            {
+                body.angularMomentum += options.dt * body.torque;
+                body.angularVelocity = body.invInertiaWorld * body.angularMomentum;
+            }
         }
-    }
-}
-
-void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& settings)
-{
-    predictAll(settings);
-    beginSweepingPass();
-    std::vector<int> applied(islands.size(), 0);
-    parallelFor(threads, islands.size(),
-                [&](std::size_t i, int thread)
-                {
-                    for (int sweep = 1; sweep <= options.contactIterations; ++sweep)
-                    {
-                        // restitution ramps -1 + 1/n, ..., 0: early sweeps remove only part of each approach
-                        const Real eps = -1.0 + static_cast<Real>(sweep) / static_cast<Real>(options.contactIterations);
-                        const int impulses =
-                            sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], eps, false, settings);
-                        applied[i] += impulses;
-                        if (impulses == 0)
-                        {
-                            break;
-                        }
-                    }
-                });
-    for (const int impulses : applied)
-    {
-        stats.contactImpulses += impulses;
-    }
-}
-
-void WorldImpl::propagateShock(const StepOptions&, const PassSettings& settings)
-{
-    // GBF03 sec. 8: one more sweep up the levels with eps = 0, every body of a lower level frozen
-    // (infinite mass) while a level is processed: corrections only travel upward, and a box can no
-    // longer push its supports into the ground.
-    predictAll(settings);
-    beginSweepingPass();
-    std::vector<int> applied(islands.size(), 0);
-    parallelFor(threads, islands.size(),
-                [&](std::size_t i, int thread)
-                {
-                    applied[i] =
-                        sweepLevels(islands[i], scratch[static_cast<std::size_t>(thread)], 0.0, true, settings);
-                    for (const std::uint32_t b : islands[i].bodies)
-                    {
-                        bodies[b].frozen = false;
-                    }
-                });
-    for (const int impulses : applied)
-    {
-        stats.shockImpulses += impulses;
     }
 }
 
 void WorldImpl::planLevels(Island& island, ThreadScratch& local)
 {
     // The island's pairs are sorted by level, a pair belonging to the higher level of its two
-    // bodies. Within a level each body is resolved against all its supports at once (the pairs with
-    // a lower-level or static partner), then the pairs between two bodies of the level two-way.
-    // Levels do not change during the contact pass, so this order is worked out once per step.
+    // bodies. Within a level each body's supports come first (the pairs with a lower-level or static
+    // partner), then the pairs between two bodies of the level. Levels do not change during the
+    // step, so this order is worked out once.
     island.levels.clear();
     island.levelBodies.clear();
     island.supportStart.clear();
-    island.supports.clear();
+    island.supportPairs.clear();
     island.twoWayPairs.clear();
-    island.frozen.clear();
     const std::vector<std::uint32_t>& order = island.pairs;
     for (std::size_t first = 0; first < order.size();)
     {
@@ -550,7 +704,6 @@ void WorldImpl::planLevels(Island& island, ThreadScratch& local)
         Island::Level run;
         run.firstBody = static_cast<std::uint32_t>(island.levelBodies.size());
         run.firstPair = static_cast<std::uint32_t>(island.twoWayPairs.size());
-        run.firstFrozen = static_cast<std::uint32_t>(island.frozen.size());
         local.supportOf.clear();
         for (std::size_t n = first; n < last; ++n)
         {
@@ -559,10 +712,6 @@ void WorldImpl::planLevels(Island& island, ThreadScratch& local)
             for (const std::uint32_t i : {pair.a, pair.b})
             {
                 const std::uint32_t other = i == pair.a ? pair.b : pair.a;
-                if (bodies[i].dynamic && bodies[i].level < level)
-                {
-                    island.frozen.push_back(i);
-                }
                 if (bodies[i].dynamic && bodies[i].level == level && bodies[other].level < level)
                 {
                     local.supportOf.emplace_back(i, static_cast<std::uint32_t>(n));
@@ -580,70 +729,238 @@ void WorldImpl::planLevels(Island& island, ThreadScratch& local)
             if (n == 0 || b != local.supportOf[n - 1].first)
             {
                 island.levelBodies.push_back(b);
-                island.supportStart.push_back(static_cast<std::uint32_t>(island.supports.size()));
+                island.supportStart.push_back(static_cast<std::uint32_t>(island.supportPairs.size()));
             }
-            const std::uint32_t k = order[local.supportOf[n].second];
-            const std::uint32_t other = pairs[k].a == b ? pairs[k].b : pairs[k].a;
-            island.supports.push_back({&bodies[other], pairCoefficients[k].friction});
+            island.supportPairs.push_back(order[local.supportOf[n].second]);
         }
         run.endBody = static_cast<std::uint32_t>(island.levelBodies.size());
         run.endPair = static_cast<std::uint32_t>(island.twoWayPairs.size());
-        run.endFrozen = static_cast<std::uint32_t>(island.frozen.size());
         island.levels.push_back(run);
         first = last;
     }
-    island.supportStart.push_back(static_cast<std::uint32_t>(island.supports.size()));
-    island.quietBodies.assign(island.levelBodies.size(), QuietStamp{});
-    island.quietSupports.assign(island.supports.size(), 0);
+    island.supportStart.push_back(static_cast<std::uint32_t>(island.supportPairs.size()));
 }
 
-int WorldImpl::sweepLevels(Island& island, ThreadScratch& local, Real eps, bool freezeLowerLevels,
-                           const PassSettings& settings)
+void WorldImpl::buildRows(Island& island, ThreadScratch& local, const StepOptions& options,
+                          const PassSettings& settings)
 {
-    int applied = 0;
-    for (const Island::Level& level : island.levels)
+    // One row per cached point of every pair, at the poses predicted with the updated velocity, in
+    // the order of the levels: each level's supports, then its two-way pairs.
+    island.rows.clear();
+    island.bodyRows.clear();
+    const auto addRows = [&](std::uint32_t k)
     {
-        if (freezeLowerLevels)
+        const BodyPair& pair = pairs[k];
+        const RigidBody& a = bodies[pair.a];
+        const RigidBody& b = bodies[pair.b];
+        ContactEntry& entry = contacts.entry(k);
+        local.points.clear();
+        contacts.entryPoints(k, placed(pair.a, a.predicted), placed(pair.b, b.predicted), local.points);
+        for (std::size_t i = 0; i < entry.points.size(); ++i)
         {
-            for (std::uint32_t n = level.firstFrozen; n < level.endFrozen; ++n)
+            CachedPoint& cached = entry.points[i];
+            const ContactPoint& point = local.points[i];
+            Vec3 t1;
+            Vec3 t2;
+            tangentBasis(cached.normal, t1, t2);
+            const Mat3& owner = cached.normalOnA ? a.predicted.rotation : b.predicted.rotation;
+            ContactRow row = makeContactRow(RowSide::of(a, pair.a, a.predicted), RowSide::of(b, pair.b, b.predicted),
+                                            point, owner * t1, owner * t2, pairCoefficients[k].friction);
+            // the separation at time n, to first order: the gap the predicted motion closes
+            const Real un = row.relativeVelocity(0, solverBodies[pair.a], solverBodies[pair.b]);
+            row.gap = point.phi - settings.lookahead * un;
+            row.load = &cached.load;
+            // the loads of the last step are where the solve starts, for the points in play
+            if (point.phi < options.contactThickness)
             {
-                bodies[island.frozen[n]].frozen = true;
+                row.lambda = {cached.load.normal, cached.load.tangent1, cached.load.tangent2};
             }
+            island.rows.push_back(row);
         }
+    };
+    for (Island::Level& level : island.levels)
+    {
+        level.firstRow = static_cast<std::uint32_t>(island.rows.size());
         for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
         {
-            RigidBody& body = bodies[island.levelBodies[n]];
-            const std::span<const Support> supports = island.supportsOf(n);
-            const std::uint32_t first = island.supportStart[n];
-            const auto supportsStill = [&]
+            island.bodyRows.push_back(static_cast<std::uint32_t>(island.rows.size()));
+            for (const std::uint32_t k : island.supportsOf(n))
             {
-                for (std::size_t s = 0; s < supports.size(); ++s)
-                {
-                    if (supports[s].body->motion != island.quietSupports[first + s])
-                    {
-                        return false;
-                    }
-                }
-                return true;
-            };
-            if (island.quietBodies[n].holds(pass, body, body) && supportsStill())
-            {
-                continue;
-            }
-            const Resolution done = resolveOnSupports(body, supports, eps, settings, local.points);
-            applied += done.impulses;
-            island.quietBodies[n] = done.quiet ? QuietStamp{pass, body.motion, body.motion} : QuietStamp{};
-            for (std::size_t s = 0; done.quiet && s < supports.size(); ++s)
-            {
-                island.quietSupports[first + s] = supports[s].body->motion;
+                addRows(k);
             }
         }
+        level.twoWayRow = static_cast<std::uint32_t>(island.rows.size());
         for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
         {
-            applied += resolveUnlessQuiet(island.twoWayPairs[n], eps, local, settings);
+            addRows(island.twoWayPairs[n]);
+        }
+        level.endRow = static_cast<std::uint32_t>(island.rows.size());
+    }
+    island.bodyRows.push_back(static_cast<std::uint32_t>(island.rows.size()));
+}
+
+void WorldImpl::solveContacts(const StepOptions& options, const PassSettings& settings)
+{
+    predictAll(settings);
+    solverBodies.resize(bodies.size());
+    parallelForEach(threads, bodies.size(), [&](std::size_t i) { solverBodies[i] = SolverBody::of(bodies[i]); });
+    const RowSettings rowSettings{settings.lookahead, options.contactThickness};
+    std::vector<int> sweeps(islands.size(), 0);
+    std::vector<int> redone(islands.size(), 0);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    Island& island = islands[i];
+                    ThreadScratch& local = scratch[static_cast<std::size_t>(thread)];
+                    buildRows(island, local, options, settings);
+                    const Real scale = velocityScale(island, solverBodies, bodies, options.dt * def.gravity.norm());
+                    Real before = 0.0;
+                    local.coldStart.clear();
+                    for (const std::uint32_t b : island.bodies)
+                    {
+                        before += solverBodies[b].kineticEnergy();
+                        local.coldStart.push_back(solverBodies[b]);
+                    }
+                    for (const ContactRow& row : island.rows)
+                    {
+                        applyRowImpulses(row, solverBodies);
+                    }
+                    const int budget = sweepBudget(island.rows.size(), options.contactIterations);
+                    sweeps[i] = solveRows(island.rows, solverBodies, rowSettings, budget, kSolverResolution * scale,
+                                          Sweeps::Continued, local.solver);
+                    Real after = 0.0;
+                    for (const std::uint32_t b : island.bodies)
+                    {
+                        after += solverBodies[b].kineticEnergy();
+                    }
+                    // The inelastic problem removes kinetic energy, and so does each row's visit from
+                    // rest. A warm start from loads that no longer fit can leave the island with more
+                    // than it had after gravity; it is then solved again from no load.
+                    if (after > before * (1.0 + 1e-12))
+                    {
+                        redone[i] = 1;
+                        for (std::size_t n = 0; n < island.bodies.size(); ++n)
+                        {
+                            solverBodies[island.bodies[n]] = local.coldStart[n];
+                        }
+                        for (ContactRow& row : island.rows)
+                        {
+                            row.lambda = {0.0, 0.0, 0.0};
+                            row.load->direction = {};
+                            row.load->change = {};
+                        }
+                        sweeps[i] += solveRows(island.rows, solverBodies, rowSettings, budget,
+                                               kSolverResolution * scale, Sweeps::Accelerated, local.solver);
+                    }
+                    // The next step starts from the two-way solve's loads. Shock propagation's are not
+                    // kept: each level is held against its frozen supports under the loads from above
+                    // as this pass left them, so they need not fit together, and starting from them
+                    // would hold a stack that the two-way problem lets tip.
+                    for (const ContactRow& row : island.rows)
+                    {
+                        row.load->normal = row.lambda[0];
+                        row.load->tangent1 = row.lambda[1];
+                        row.load->tangent2 = row.lambda[2];
+                    }
+                });
+    for (std::size_t i = 0; i < islands.size(); ++i)
+    {
+        stats.contactSweeps = std::max(stats.contactSweeps, sweeps[i]);
+        stats.coldRestarts += redone[i];
+        stats.contactRows += static_cast<int>(islands[i].rows.size());
+    }
+}
+
+void WorldImpl::propagateShock(const StepOptions& options, const PassSettings& settings)
+{
+    // GBF03 sec. 8: once more up the levels, every body of a lower level frozen (infinite mass) while
+    // a level is solved: corrections only travel upward, and a box can no longer push its supports
+    // into the ground. Each level is solved to the solver's resolution under the loads from above as
+    // the contact pass left them: a body whose load from above tips it past its support's edge is let
+    // tip, one that can stand is held. (So the contact pass must have those loads right: a body held
+    // under loads from above that have not converged is held where physics tips it.)
+    const RowSettings rowSettings{settings.lookahead, options.contactThickness};
+    std::vector<int> iterations(islands.size(), 0);
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int thread)
+                {
+                    Island& island = islands[i];
+                    ThreadScratch& local = scratch[static_cast<std::size_t>(thread)];
+                    const Real tolerance = kSolverResolution *
+                                           velocityScale(island, solverBodies, bodies, options.dt * def.gravity.norm());
+                    const auto solveLevel = [&](const Island::Level& level)
+                    {
+                        std::span<ContactRow> rows(island.rows.data() + level.firstRow, level.endRow - level.firstRow);
+                        for (ContactRow& row : rows)
+                        {
+                            // only the level's own bodies move: one side of a support, both of a two-way pair
+                            setMovable(row, levelMovableOf(bodies[row.a], bodies[row.b]));
+                        }
+                        // each body on its supports in one step where one rigid motion stops it there (a
+                        // body at rest, one sliding as a whole), then Gauss-Seidel for the rest
+                        for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
+                        {
+                            const std::uint32_t index = island.levelBodies[n];
+                            local.inPlay.clear();
+                            for (std::uint32_t r = island.bodyRows[n]; r < island.bodyRows[n + 1]; ++r)
+                            {
+                                ContactRow& row = island.rows[r];
+                                const Real un = row.relativeVelocity(0, solverBodies[row.a], solverBodies[row.b]);
+                                if (row.lambda[0] > 0.0 || row.gap + rowSettings.lookahead * un < rowSettings.thickness)
+                                {
+                                    local.inPlay.push_back(&row);
+                                }
+                            }
+                            const RigidBody& body = bodies[index];
+                            solveRigidPatch(local.inPlay, solverBodies,
+                                            {index, body.predicted.position, body.invMass, body.invInertiaWorld},
+                                            nullptr, tolerance, local.solver);
+                        }
+                        iterations[i] += solveRows(rows, solverBodies, rowSettings, options.shockIterations, tolerance,
+                                                   Sweeps::Accelerated, local.solver);
+                    };
+                    // up: every lower level frozen
+                    for (const Island::Level& level : island.levels)
+                    {
+                        solveLevel(level);
+                    }
+                });
+    for (const int n : iterations)
+    {
+        stats.shockIterations += n;
+    }
+}
+
+void WorldImpl::storeContactResults()
+{
+    // what each point carried, for World::contacts(), in pair order: the islands hold their rows by
+    // level, so they are gathered per pair first
+    lastContacts.clear();
+    for (const Island& island : islands)
+    {
+        for (const ContactRow& row : island.rows)
+        {
+            if (row.lambda[0] > 0.0)
+            {
+                const std::uint32_t a = row.a;
+                const std::uint32_t b = row.b;
+                lastContacts.push_back({BodyId{a}, BodyId{b}, row.point, row.direction[0], row.gap, row.lambda[0],
+                                        row.lambda[1] * row.direction[1] + row.lambda[2] * row.direction[2]});
+            }
         }
     }
-    return applied;
+    std::stable_sort(lastContacts.begin(), lastContacts.end(),
+                     [](const Contact& l, const Contact& r)
+                     { return std::make_pair(l.a.index, l.b.index) < std::make_pair(r.a.index, r.b.index); });
+    // the bodies take the solved velocities
+    parallelFor(threads, islands.size(),
+                [&](std::size_t i, int)
+                {
+                    for (const std::uint32_t b : islands[i].bodies)
+                    {
+                        solverBodies[b].storeInto(bodies[b]);
+                    }
+                });
 }
 
 void WorldImpl::updatePositions(const StepOptions& options)
@@ -665,6 +982,22 @@ void WorldImpl::updatePositions(const StepOptions& options)
                     });
 }
 
+void WorldImpl::pointsToward(std::uint32_t k, std::uint32_t body, const StepOptions& options,
+                             std::vector<ContactPoint>& out, ContactScratch& contactScratch)
+{
+    const BodyPair& pair = pairs[k];
+    const std::size_t first = out.size();
+    contacts.pointsAt(k, placed(pair.a, bodies[pair.a].pose()), placed(pair.b, bodies[pair.b].pose()), 0.0,
+                      options.contactThickness, pairReach(k, options), out, contactScratch);
+    if (body == pair.b)
+    {
+        for (std::size_t i = first; i < out.size(); ++i)
+        {
+            out[i].normal = -out[i].normal;
+        }
+    }
+}
+
 void WorldImpl::pushOut(const StepOptions& options)
 {
     pushOrigins.resize(bodies.size());
@@ -672,14 +1005,14 @@ void WorldImpl::pushOut(const StepOptions& options)
     std::vector<int> moves(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
-                { moves[i] = pushOutIsland(islands[i], scratch[static_cast<std::size_t>(thread)].pushOut, options); });
+                { moves[i] = pushOutIsland(islands[i], scratch[static_cast<std::size_t>(thread)], options); });
     for (const int moved : moves)
     {
         stats.pushOutMoves += moved;
     }
 }
 
-int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const StepOptions& options)
+int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const StepOptions& options)
 {
     // how far a body may still go this step: it leaves an overlap at most at pushOutSpeed
     const Real stepReach = options.pushOutSpeed * options.dt;
@@ -696,12 +1029,16 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
     const auto reach = [&](std::uint32_t i)
     { return bodies[i].dynamic ? stepReach - pushedSoFar(bodies[i], pushOrigins[i]) : 0.0; };
     const Real allowance = options.pushOutAllowance;
+    std::vector<ContactPoint>& points = local.pushOut.points;
     int moves = 0;
     int sweep = 0;
     // pushes a pair apart; when they move, marks its dynamic bodies as moved in this sweep
-    const auto pushPair = [&](const BodyPair& pair)
+    const auto pushPair = [&](std::uint32_t k)
     {
-        if (!pushApart(bodies[pair.a], bodies[pair.b], allowance, reach(pair.a), reach(pair.b), local))
+        const BodyPair& pair = pairs[k];
+        points.clear();
+        pointsToward(k, pair.a, options, points, local.contact);
+        if (!pushApart(bodies[pair.a], bodies[pair.b], points, allowance, reach(pair.a), reach(pair.b), local.pushOut))
         {
             return false;
         }
@@ -729,7 +1066,12 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
             for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
             {
                 const std::uint32_t i = island.levelBodies[n];
-                if (pushOutOfSupports(bodies[i], island.supportsOf(n), allowance, reach(i), local))
+                points.clear();
+                for (const std::uint32_t k : island.supportsOf(n))
+                {
+                    pointsToward(k, i, options, points, local.contact);
+                }
+                if (pushOutOfSupports(bodies[i], points, allowance, reach(i), local.pushOut))
                 {
                     lastPushSweep[i] = sweep;
                     settled = false;
@@ -738,7 +1080,7 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
             }
             for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
             {
-                if (pushPair(pairs[island.twoWayPairs[n]]))
+                if (pushPair(island.twoWayPairs[n]))
                 {
                     settled = false;
                 }
@@ -768,7 +1110,7 @@ int WorldImpl::pushOutIsland(const Island& island, PushOutScratch& local, const 
             {
                 continue;
             }
-            if (pushPair(pair))
+            if (pushPair(k))
             {
                 settled = false;
             }

@@ -3,9 +3,13 @@
 #include "dynamics/integrate.hpp"
 #include "world/world_impl.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -54,6 +58,103 @@ void validateShape(const Shape& shape)
     {
         require(mesh->geometry != nullptr, "mesh", "has no geometry (build it with MeshGeometry::build)");
     }
+}
+
+std::string number(Real value)
+{
+    std::ostringstream out;
+    out.precision(17);
+    out << value;
+    return out.str();
+}
+
+std::string vector(const Vec3& value)
+{
+    return "(" + number(value.x()) + ", " + number(value.y()) + ", " + number(value.z()) + ")";
+}
+
+// The body a handle names, or std::invalid_argument saying why there is none.
+RigidBody& lookUp(WorldImpl& impl, BodyId id, const std::string& field = "body")
+{
+    require(id.index < impl.bodies.size(), field,
+            "no body " + std::to_string(id.index) + " in this world (it has " + std::to_string(impl.bodies.size()) +
+                ")");
+    RigidBody& body = impl.bodies[id.index];
+    require(!body.removed, field, "body " + std::to_string(id.index) + " was removed");
+    return body;
+}
+
+// A dynamic body, for what only moves dynamic bodies.
+RigidBody& dynamicBody(WorldImpl& impl, BodyId id, const std::string& what)
+{
+    RigidBody& body = lookUp(impl, id);
+    require(body.dynamic, "body", "body " + std::to_string(id.index) + " is static: " + what);
+    return body;
+}
+
+BodyState stateOf(const RigidBody& body)
+{
+    return {body.position, body.orientation, body.linearVelocity, body.angularVelocity, body.angularMomentum};
+}
+
+// L = I w in the world frame, with the body's inertia at its orientation.
+Vec3 momentumOf(const RigidBody& body, const Vec3& angularVelocity)
+{
+    if (body.principalAxesAligned)
+    {
+        return body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() * angularVelocity;
+    }
+    const Mat3 axes = body.principalRotation();
+    return axes * body.principalInertia.asDiagonal() * axes.transpose() * angularVelocity;
+}
+
+// An inertia tensor's principal moments and axes (a rotation, as columns), checked to be a real
+// body's: symmetric, positive definite, the moments obeying the triangle inequality.
+struct PrincipalFrame
+{
+    Vec3 moments;
+    Mat3 axes = Mat3::Identity();
+    bool aligned = true; ///< no products of inertia: the axes are the body axes
+};
+
+PrincipalFrame principalFrame(const Mat3& inertia)
+{
+    require(inertia.allFinite(), "inertia", "must be finite");
+    const Real size = inertia.cwiseAbs().maxCoeff();
+    require((inertia - inertia.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * size, "inertia",
+            "must be symmetric (I = I^T)");
+    PrincipalFrame frame;
+    frame.moments = inertia.diagonal();
+    frame.aligned = inertia(0, 1) == 0.0 && inertia(0, 2) == 0.0 && inertia(1, 2) == 0.0 && inertia(1, 0) == 0.0 &&
+                    inertia(2, 0) == 0.0 && inertia(2, 1) == 0.0;
+    if (!frame.aligned)
+    {
+        const Eigen::SelfAdjointEigenSolver<Mat3> solver(0.5 * (inertia + inertia.transpose()));
+        frame.moments = solver.eigenvalues();
+        frame.axes = solver.eigenvectors();
+        if (frame.axes.determinant() < 0.0)
+        {
+            frame.axes.col(2) = -frame.axes.col(2); // a rotation, so that the body frame keeps its handedness
+        }
+    }
+    const Vec3& moments = frame.moments;
+    require((moments.array() > 0.0).all(), "inertia",
+            "must be positive definite, its principal moments are " + vector(moments));
+    for (int k = 0; k < 3; ++k)
+    {
+        require(moments((k + 1) % 3) + moments((k + 2) % 3) >= moments(k) * (1.0 - 1e-9), "inertia",
+                "principal moments " + vector(moments) +
+                    " break the triangle inequality (each at most the sum of the other two), so no body has them");
+    }
+    return frame;
+}
+
+void setPrincipalFrame(RigidBody& body, const PrincipalFrame& frame)
+{
+    body.principalInertia = frame.moments;
+    body.invPrincipalInertia = frame.moments.cwiseInverse();
+    body.inertiaAxes = frame.axes;
+    body.principalAxesAligned = frame.aligned;
 }
 
 } // namespace
@@ -155,17 +256,28 @@ BodyId World::createBody(const BodyDef& def)
         body.invPrincipalInertia = body.principalInertia.cwiseInverse();
         require(body.principalInertia.allFinite() && body.invPrincipalInertia.allFinite(),
                 def.mass > 0.0 ? "mass" : "density", "gives an inertia that is not a positive finite number");
+        if (!def.inertia.isZero(0.0))
+        {
+            setPrincipalFrame(body, principalFrame(def.inertia));
+        }
         // L = I w in the world frame
-        body.angularMomentum =
-            body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() * def.angularVelocity;
+        body.angularMomentum = momentumOf(body, def.angularVelocity);
         body.linearVelocity = def.linearVelocity;
     }
     else
     {
         require(def.linearVelocity.isZero(0.0) && def.angularVelocity.isZero(0.0), "velocity",
                 "a static body cannot move");
+        require(def.inertia.isZero(0.0), "inertia", "a static body has none");
         body.mass = std::numeric_limits<Real>::infinity();
     }
+    body.collisionGroup = def.filter.group;
+    body.collisionMask = def.filter.mask;
+    if (def.filter != CollisionFilter{})
+    {
+        m_impl->filtering = true;
+    }
+    body.acceleration = body.dynamic ? m_impl->def.gravity : Vec3::Zero();
     updateDerivedQuantities(body);
     body.predicted = body.pose();
     m_impl->bodies.push_back(body);
@@ -175,7 +287,7 @@ BodyId World::createBody(const BodyDef& def)
 void World::setState(BodyId id, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
                      const Vec3& angularVelocity)
 {
-    RigidBody& body = m_impl->bodies.at(id.index);
+    RigidBody& body = lookUp(*m_impl, id);
     require(body.dynamic, "static", "a static body cannot be moved");
     require(finite(position), "position", "must be finite");
     require(finite(linearVelocity), "velocity", "must be finite");
@@ -186,10 +298,193 @@ void World::setState(BodyId id, const Vec3& position, const Quat& orientation, c
     body.orientation = Quat(orientation.coeffs().stableNormalized());
     body.rotation = body.orientation.toRotationMatrix();
     body.linearVelocity = linearVelocity;
-    body.angularMomentum =
-        body.rotation * body.principalInertia.asDiagonal() * body.rotation.transpose() * angularVelocity;
+    body.angularMomentum = momentumOf(body, angularVelocity);
     updateDerivedQuantities(body);
     body.predicted = body.pose();
+}
+
+void World::removeBody(BodyId id)
+{
+    RigidBody& body = lookUp(*m_impl, id);
+    // a tombstone: static and at rest, so that no stage moves it or counts it, and left out of the
+    // broad phase, so that nothing pairs with it
+    body.removed = true;
+    body.dynamic = false;
+    body.mass = std::numeric_limits<Real>::infinity();
+    body.invMass = 0.0;
+    body.principalInertia.setZero();
+    body.invPrincipalInertia.setZero();
+    body.inertiaAxes.setIdentity();
+    body.principalAxesAligned = true;
+    body.linearVelocity.setZero();
+    body.angularMomentum.setZero();
+    body.force.setZero();
+    body.torque.setZero();
+    body.acceleration.setZero();
+    updateDerivedQuantities(body);
+    body.predicted = body.pose();
+}
+
+bool World::contains(BodyId id) const
+{
+    return id.index < m_impl->bodies.size() && !m_impl->bodies[id.index].removed;
+}
+
+void World::applyForce(BodyId id, const Vec3& force)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    require(finite(force), "force", "must be finite, got " + vector(force));
+    body.force += force;
+}
+
+void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    require(finite(force), "force", "must be finite, got " + vector(force));
+    require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
+    body.force += force;
+    body.torque += (worldPoint - body.position).cross(force);
+}
+
+void World::applyTorque(BodyId id, const Vec3& torque)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "torques do not move it");
+    require(finite(torque), "torque", "must be finite, got " + vector(torque));
+    body.torque += torque;
+}
+
+void World::applyImpulse(BodyId id, const Vec3& impulse)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
+    body.linearVelocity += body.invMass * impulse;
+}
+
+void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
+    require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
+    impulse::applyImpulse(body, impulse, Vec3(worldPoint - body.position));
+}
+
+void World::applyAngularImpulse(BodyId id, const Vec3& angularImpulse)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    require(finite(angularImpulse), "angular_impulse", "must be finite, got " + vector(angularImpulse));
+    body.angularMomentum += angularImpulse;
+    body.angularVelocity = body.invInertiaWorld * body.angularMomentum;
+}
+
+Vec3 World::appliedForce(BodyId id) const
+{
+    return lookUp(*m_impl, id).force;
+}
+
+Vec3 World::appliedTorque(BodyId id) const
+{
+    return lookUp(*m_impl, id).torque;
+}
+
+void World::setCollisionFilter(BodyId id, const CollisionFilter& filter)
+{
+    RigidBody& body = lookUp(*m_impl, id);
+    body.collisionGroup = filter.group;
+    body.collisionMask = filter.mask;
+    if (filter != CollisionFilter{})
+    {
+        m_impl->filtering = true;
+    }
+}
+
+CollisionFilter World::collisionFilter(BodyId id) const
+{
+    const RigidBody& body = lookUp(*m_impl, id);
+    return {body.collisionGroup, body.collisionMask};
+}
+
+void World::setCollisionEnabled(BodyId a, BodyId b, bool enabled)
+{
+    lookUp(*m_impl, a, "a");
+    lookUp(*m_impl, b, "b");
+    require(a.index != b.index, "b", "is the same body as a (a body never collides with itself)");
+    const auto key = std::minmax(a.index, b.index);
+    if (enabled)
+    {
+        m_impl->disabledPairs.erase({key.first, key.second});
+    }
+    else
+    {
+        m_impl->disabledPairs.insert({key.first, key.second});
+        m_impl->filtering = true;
+    }
+}
+
+bool World::collisionEnabled(BodyId a, BodyId b) const
+{
+    lookUp(*m_impl, a, "a");
+    lookUp(*m_impl, b, "b");
+    return a.index != b.index && m_impl->collides(a.index, b.index);
+}
+
+bool WorldImpl::collides(std::uint32_t a, std::uint32_t b) const
+{
+    const RigidBody& first = bodies[a];
+    const RigidBody& second = bodies[b];
+    if ((first.collisionGroup & second.collisionMask) == 0 || (second.collisionGroup & first.collisionMask) == 0)
+    {
+        return false;
+    }
+    return !disabledPairs.contains(std::minmax(a, b));
+}
+
+void WorldImpl::dropFilteredPairs()
+{
+    if (filtering)
+    {
+        std::erase_if(pairs, [&](const BodyPair& pair) { return !collides(pair.a, pair.b); });
+    }
+}
+
+void WorldImpl::beginLoads()
+{
+    for (RigidBody& body : bodies)
+    {
+        if (body.dynamic)
+        {
+            // exactly gravity when no force is applied, so that such steps are unchanged bit for bit
+            body.acceleration = body.force.isZero(0.0) ? def.gravity : Vec3(def.gravity + body.invMass * body.force);
+        }
+    }
+}
+
+void WorldImpl::clearLoads()
+{
+    for (RigidBody& body : bodies)
+    {
+        body.force.setZero();
+        body.torque.setZero();
+    }
+}
+
+void World::setMassProperties(BodyId id, Real mass, const Mat3& inertia)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "it has no mass properties to set");
+    require(std::isfinite(mass) && mass > 0.0, "mass", "must be a positive finite number, got " + number(mass));
+    const PrincipalFrame frame = principalFrame(inertia);
+    const Vec3 angularVelocity = body.angularVelocity;
+    body.mass = mass;
+    body.invMass = 1.0 / mass;
+    setPrincipalFrame(body, frame);
+    body.angularMomentum = momentumOf(body, angularVelocity);
+    updateDerivedQuantities(body);
+}
+
+void World::setMass(BodyId id, Real mass)
+{
+    const RigidBody& body = dynamicBody(*m_impl, id, "it has no mass to set");
+    require(std::isfinite(mass) && mass > 0.0, "mass", "must be a positive finite number, got " + number(mass));
+    setMassProperties(id, mass, inertia(id) * (mass / body.mass));
 }
 
 WorldSnapshot World::snapshot() const
@@ -197,10 +492,11 @@ WorldSnapshot World::snapshot() const
     WorldSnapshot snapshot;
     snapshot.time = m_impl->time;
     snapshot.bodies.reserve(m_impl->bodies.size());
-    for (std::uint32_t b = 0; b < m_impl->bodies.size(); ++b)
+    for (const RigidBody& body : m_impl->bodies)
     {
-        snapshot.bodies.push_back(state(BodyId{b}));
+        snapshot.bodies.push_back(stateOf(body));
     }
+    snapshot.contacts = m_impl->contacts.save();
     return snapshot;
 }
 
@@ -218,6 +514,10 @@ void World::restore(const WorldSnapshot& snapshot)
         const BodyState& s = snapshot.bodies[b];
         RigidBody& body = restored[b];
         const std::string field = "bodies/" + std::to_string(b) + "/";
+        if (body.removed)
+        {
+            continue;
+        }
         if (!body.dynamic)
         {
             require(s.position == body.position && s.orientation.coeffs() == body.orientation.coeffs(),
@@ -243,6 +543,7 @@ void World::restore(const WorldSnapshot& snapshot)
         require(body.angularVelocity == s.angularVelocity, field + "angular_velocity",
                 "does not follow from the angular momentum and orientation (it is derived from them)");
     }
+    m_impl->contacts.restore(snapshot.contacts, bodies.size()); // throws, changing nothing, when it does not fit
     bodies = std::move(restored);
     m_impl->time = snapshot.time;
 }
@@ -257,9 +558,10 @@ void World::step(const StepOptions& options)
     {
         throw std::invalid_argument("restitution_threshold: must be a non-negative finite speed");
     }
-    if (options.collisionIterations < 0 || options.contactIterations < 1 || options.pairIterations < 1)
+    if (options.collisionIterations < 0 || options.contactIterations < 1 || options.pairIterations < 1 ||
+        options.shockIterations < 1)
     {
-        throw std::invalid_argument("iterations: collision >= 0, contact >= 1 and pair >= 1 required");
+        throw std::invalid_argument("iterations: collision >= 0, contact >= 1, shock >= 1 and pair >= 1 required");
     }
     if (!(options.pushOutAllowance >= 0.0) || !std::isfinite(options.pushOutAllowance))
     {
@@ -287,38 +589,55 @@ std::uint32_t World::bodyCount() const
 
 bool World::isDynamic(BodyId body) const
 {
-    return m_impl->bodies.at(body.index).dynamic;
+    return lookUp(*m_impl, body).dynamic;
 }
 
 BodyState World::state(BodyId id) const
 {
-    const RigidBody& body = m_impl->bodies.at(id.index);
-    return {body.position, body.orientation, body.linearVelocity, body.angularVelocity, body.angularMomentum};
+    return stateOf(lookUp(*m_impl, id));
 }
 
 Real World::mass(BodyId body) const
 {
-    return m_impl->bodies.at(body.index).mass;
+    return lookUp(*m_impl, body).mass;
 }
 
 Vec3 World::principalInertia(BodyId body) const
 {
-    return m_impl->bodies.at(body.index).principalInertia;
+    return lookUp(*m_impl, body).principalInertia;
+}
+
+Mat3 World::principalAxes(BodyId body) const
+{
+    return lookUp(*m_impl, body).inertiaAxes;
+}
+
+Mat3 World::inertia(BodyId id) const
+{
+    const RigidBody& body = lookUp(*m_impl, id);
+    if (body.principalAxesAligned)
+    {
+        return body.principalInertia.asDiagonal();
+    }
+    return body.inertiaAxes * body.principalInertia.asDiagonal() * body.inertiaAxes.transpose();
 }
 
 const Shape& World::shape(BodyId body) const
 {
-    return m_impl->bodies.at(body.index).shape;
+    return lookUp(*m_impl, body).shape;
 }
 
 MaterialId World::material(BodyId body) const
 {
-    return m_impl->bodies.at(body.index).material;
+    return lookUp(*m_impl, body).material;
 }
 
 const Material& World::material(MaterialId material) const
 {
-    return m_impl->materials.at(material.index);
+    require(material.index < m_impl->materials.size(), "material",
+            "no material " + std::to_string(material.index) + " in this world (it has " +
+                std::to_string(m_impl->materials.size()) + ")");
+    return m_impl->materials[material.index];
 }
 
 Vec3 World::gravity() const
@@ -369,6 +688,11 @@ Vec3 World::linearMomentum() const
         }
     }
     return momentum;
+}
+
+const std::vector<Contact>& World::contacts() const
+{
+    return m_impl->lastContacts;
 }
 
 const StepStats& World::lastStepStats() const

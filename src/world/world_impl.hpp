@@ -3,15 +3,20 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/contact.hpp"
+#include "collision/narrow_phase.hpp"
+#include "contact/contact_cache.hpp"
+#include "dynamics/collision_pass.hpp"
 #include "dynamics/contact_graph.hpp"
-#include "dynamics/pair_resolution.hpp"
+#include "dynamics/contact_solver.hpp"
 #include "dynamics/push_out.hpp"
 #include "dynamics/rigid_body.hpp"
 
 #include <impulse/world.hpp>
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <span>
 #include <utility>
 #include <vector>
@@ -19,15 +24,15 @@
 namespace impulse
 {
 
-/// When resolving a pair, or a body on its supports, last found nothing approaching: the pass and
-/// the motion stamps (RigidBody::motion) of the bodies then. While the pass is the same and no
-/// body's stamp has moved, every prediction it read is the same, so resolving again would find
-/// nothing again and can be skipped: a sweep revisits only what an impulse has touched since.
+/// When resolving a pair in the collision pass last found nothing approaching: the pass and the
+/// motion stamps (RigidBody::motion) of the bodies then. While the pass is the same and no body's
+/// stamp has moved, every prediction it read is the same, so resolving again would find nothing
+/// again and can be skipped: a sweep revisits only what an impulse has touched since.
 struct QuietStamp
 {
     std::uint64_t pass = 0; ///< WorldImpl::pass when taken; 0: never
     std::uint32_t motion = 0;
-    std::uint32_t otherMotion = 0; ///< a pair's second body; unused for a body on its supports
+    std::uint32_t otherMotion = 0;
 
     bool holds(std::uint64_t currentPass, const RigidBody& a, const RigidBody& b) const
     {
@@ -43,26 +48,27 @@ struct Island
     std::vector<std::uint32_t> bodies; ///< dynamic, ascending
     std::vector<std::uint32_t> pairs;  ///< indices into WorldImpl::pairs: ascending, then by level
 
-    /// The order of the contact pass and shock propagation, fixed once the levels are known.
+    /// The order of the contact pass, shock propagation and push-out, fixed once the levels are known.
     struct Level
     {
-        std::uint32_t firstBody = 0, endBody = 0;     ///< range of levelBodies
-        std::uint32_t firstPair = 0, endPair = 0;     ///< range of twoWayPairs
-        std::uint32_t firstFrozen = 0, endFrozen = 0; ///< range of frozen
+        std::uint32_t firstBody = 0, endBody = 0; ///< range of levelBodies
+        std::uint32_t firstPair = 0, endPair = 0; ///< range of twoWayPairs
+        /// Range of rows: the supports of the level's bodies from firstRow, those of its two-way
+        /// pairs from twoWayRow.
+        std::uint32_t firstRow = 0, twoWayRow = 0, endRow = 0;
     };
     std::vector<Level> levels;
-    std::vector<std::uint32_t> levelBodies;   ///< bodies of each level that rest on something, ascending
-    std::vector<std::uint32_t> supportStart;  ///< per levelBodies entry: its range of supports
-    std::vector<Support> supports;            ///< in pair order
-    std::vector<std::uint32_t> twoWayPairs;   ///< pairs of two bodies of the same level, in pair order
-    std::vector<std::uint32_t> frozen;        ///< per level: the lower-level bodies shock propagation freezes
-    std::vector<QuietStamp> quietBodies;      ///< per levelBodies entry: the body's stamp when last quiet
-    std::vector<std::uint32_t> quietSupports; ///< per supports entry: its motion stamp then
+    std::vector<std::uint32_t> levelBodies;  ///< bodies of each level that rest on something, ascending
+    std::vector<std::uint32_t> supportStart; ///< per levelBodies entry: its range of supportPairs
+    std::vector<std::uint32_t> supportPairs; ///< pairs with a lower-level or static partner, in pair order
+    std::vector<std::uint32_t> twoWayPairs;  ///< pairs of two bodies of the same level, in pair order
+    std::vector<ContactRow> rows;            ///< the contact points of this step, in level order
+    std::vector<std::uint32_t> bodyRows;     ///< per levelBodies entry: where its support rows start in rows
 
-    /// What levelBodies[n] rests on.
-    std::span<const Support> supportsOf(std::uint32_t n) const
+    /// The pairs levelBodies[n] rests on.
+    std::span<const std::uint32_t> supportsOf(std::uint32_t n) const
     {
-        return {supports.data() + supportStart[n], supportStart[n + 1] - supportStart[n]};
+        return {supportPairs.data() + supportStart[n], supportStart[n + 1] - supportStart[n]};
     }
 };
 
@@ -71,7 +77,13 @@ struct ThreadScratch
 {
     std::vector<ContactPoint> points;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> supportOf; ///< (body, pair), sorted
+    std::vector<std::uint32_t> sorted;                              ///< sortByLevel's output
+    std::vector<std::size_t> levelStart;                            ///< sortByLevel's counts
+    std::vector<SolverBody> coldStart;                              ///< an island's bodies before its solve
+    std::vector<ContactRow*> inPlay;                                ///< a body's rows in play
     PushOutScratch pushOut;
+    ContactScratch contact; ///< the contact layer's and every narrow-phase call's of this thread
+    SolverScratch solver;   ///< the row solves
 };
 
 class WorldImpl
@@ -83,25 +95,43 @@ class WorldImpl
     std::vector<RigidBody> bodies; ///< in creation order; BodyId::index indexes it
     Real time = 0.0;
     StepStats stats;
+    std::vector<Contact> lastContacts; ///< what the contact points carried in the last step
+    /// The contact layer: every candidate pair's points and loads, kept from step to step.
+    ContactCache contacts;
 
     // per-step scratch, kept to avoid reallocating every step
     std::vector<BodyPair> pairs;                    ///< candidate pairs, sorted by (a, b)
     std::vector<PairCoefficients> pairCoefficients; ///< parallel to pairs
     std::vector<int> pairLevels;                    ///< parallel to pairs: max level of the two bodies
     BroadPhase broadPhase;
+    std::vector<BroadPhaseBody> broadBodies; ///< per body: what the broad phase sees
+    std::vector<Real> broadMargins;          ///< per body: how far its box is grown this step
     std::vector<Island> islands;
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
-    std::vector<Pose> probePoses;          ///< per body: predicted with the new velocity v + dt a
+    std::vector<Pose> oldPoses;            ///< per body: predicted with the post-collision velocity v
+    std::vector<SolverBody> solverBodies;  ///< per body: velocities while the contact passes solve
     std::vector<Pose> pushOrigins;         ///< per body: its pose before push-out
     std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
     std::vector<QuietStamp> quietPairs;    ///< parallel to pairs
-    std::uint64_t pass = 0;                ///< counts the sweeping passes, so that no stamp outlives its own
+    std::uint64_t pass = 0;                ///< counts the collision passes, so that no stamp outlives its own
     std::vector<ThreadScratch> scratch;    ///< one per worker thread
     int threads = 1;                       ///< worker threads of this step
 
     PairCoefficients coefficients(MaterialId a, MaterialId b) const;
     void step(const StepOptions& options);
+
+    // what the World API sets between steps (world.cpp)
+    std::set<std::pair<std::uint32_t, std::uint32_t>> disabledPairs; ///< (lower, higher): never collide
+    bool filtering = false; ///< some body has a collision filter of its own or some pair is disabled
+    /// Whether filters and disabled pairs let bodies a and b collide.
+    bool collides(std::uint32_t a, std::uint32_t b) const;
+    /// Drops the candidate pairs that must not collide, right after the broad phase.
+    void dropFilteredPairs();
+    /// Sets each body's acceleration for this step from gravity and the applied force.
+    void beginLoads();
+    /// Clears the applied forces and torques once the step has used them.
+    void clearLoads();
 
   private:
     // the two orders of the step (step.cpp), each a list of the stages below
@@ -110,24 +140,37 @@ class WorldImpl
 
     void findCandidatePairs(const StepOptions& options, const PassSettings& settings);
     void buildIslands();
+    /// After the collision pass: grows the margin of every body whose new velocity takes it beyond its
+    /// box; whether any did.
+    bool widenEscapedBoxes(const StepOptions& options);
+    void refreshContacts(const StepOptions& options, Real extra);
     void solveCollisions(const StepOptions& options, const PassSettings& settings);
-    void updateVelocities(const StepOptions& options);
     void buildContactGraph(const StepOptions& options);
     void assignSingleLevel();
+    void updateVelocities(const StepOptions& options);
     void solveContacts(const StepOptions& options, const PassSettings& settings);
     void propagateShock(const StepOptions& options, const PassSettings& settings);
+    void storeContactResults();
     void updatePositions(const StepOptions& options);
     void pushOut(const StepOptions& options);
-    int pushOutIsland(const Island& island, PushOutScratch& scratch, const StepOptions& options);
+    void finishStep(const StepOptions& options);
 
     void predictAll(const PassSettings& settings);
-    int sweepPairs(const Island& island, ThreadScratch& scratch, const PassSettings& settings);
+    PlacedShape placed(std::uint32_t body, const Pose& pose) const;
+    /// How far pair k's points may move relative to each other before its entry is captured again.
+    Real pairReach(std::uint32_t k, const StepOptions& options) const;
+    int sweepPairs(const Island& island, ThreadScratch& scratch, const StepOptions& options,
+                   const PassSettings& settings);
+    /// resolveCollision on pair k, unless it was found quiet at these very poses or its cached points
+    /// show nothing that can collide.
+    int resolveUnlessQuiet(std::uint32_t k, ThreadScratch& scratch, const StepOptions& options,
+                           const PassSettings& settings);
     void planLevels(Island& island, ThreadScratch& scratch);
-    int sweepLevels(Island& island, ThreadScratch& scratch, Real eps, bool freezeLowerLevels,
-                    const PassSettings& settings);
-    void beginSweepingPass();
-    /// resolvePair on pair k with restitution eps, unless it was found quiet at these very poses.
-    int resolveUnlessQuiet(std::uint32_t k, Real eps, ThreadScratch& scratch, const PassSettings& settings);
+    void buildRows(Island& island, ThreadScratch& scratch, const StepOptions& options, const PassSettings& settings);
+    int pushOutIsland(const Island& island, ThreadScratch& scratch, const StepOptions& options);
+    /// The points of pair k at the bodies' current poses, normals turned toward `body` (one of the pair).
+    void pointsToward(std::uint32_t k, std::uint32_t body, const StepOptions& options, std::vector<ContactPoint>& out,
+                      ContactScratch& contactScratch);
 };
 
 } // namespace impulse

@@ -57,6 +57,35 @@ check("compare prints an impulse and a MuJoCo column" "output: ${run_out}"
 check("compare prints the exit velocities, the penetration and ms per step" "output: ${run_out}"
       run_out MATCHES "velocity body 1" AND run_out MATCHES "deepest penetration" AND run_out MATCHES "ms per step")
 
+# an MJCF model wherever a scene is accepted: plot, render and view with --scene MODEL.xml, render
+# of the model itself, compare of the model
+set(model "${WORK}/drop.xml")
+run_impulse(plot "${WORK}/from_mjcf.csv" --scene "${model}" --out "${WORK}/model_plot.png" --size 320x240)
+check("plot TRAJ --scene MODEL.xml exits 0 and writes the picture" "exit ${run_rc}, stderr: ${run_err}"
+      run_rc EQUAL 0 AND EXISTS "${WORK}/model_plot.png")
+run_impulse(view "${WORK}/from_mjcf.csv" --scene "${model}" --out "${WORK}/model_view.html")
+check("view TRAJ --scene MODEL.xml exits 0 and writes the page" "exit ${run_rc}, stderr: ${run_err}"
+      run_rc EQUAL 0 AND EXISTS "${WORK}/model_view.html")
+run_impulse(render "${model}" --duration 0.3 --fps 10 --size 160x120 --no-video --out "${WORK}/model_frames")
+file(GLOB model_frames "${WORK}/model_frames/*.png")
+list(LENGTH model_frames model_frame_count)
+check("render MODEL.xml simulates the model and writes its frames" "exit ${run_rc}, ${model_frame_count} frames, stderr: ${run_err}"
+      run_rc EQUAL 0 AND model_frame_count EQUAL 4)
+run_impulse(render "${WORK}/from_mjcf.csv" --scene "${model}" --size 160x120 --out "${WORK}/model_still.png")
+check("render TRAJ --scene MODEL.xml exits 0" "exit ${run_rc}, stderr: ${run_err}" run_rc EQUAL 0)
+run_impulse(compare "${model}")
+check("compare MODEL.xml runs the model on both sides" "exit ${run_rc}, stderr: ${run_err}, output: ${run_out}"
+      run_rc EQUAL 0 AND run_out MATCHES "runs the model with native mj_step" AND run_out MATCHES "apex")
+file(READ "${model}" model_text)
+string(REGEX REPLACE "[^\n]*impulse_duration[^\n]*\n" "" model_text "${model_text}")
+file(WRITE "${WORK}/drop_untimed.xml" "${model_text}")
+run_impulse(compare "${WORK}/drop_untimed.xml")
+check("compare MODEL.xml without impulse_duration says what to add" "exit ${run_rc}, stderr: ${run_err}"
+      NOT run_rc EQUAL 0 AND run_err MATCHES "no duration: add <numeric name=\"impulse_duration\"")
+run_impulse(render "${WORK}/drop_untimed.xml" --size 160x120 --out "${WORK}/no_duration.png")
+check("render MODEL.xml without a duration asks for --duration" "exit ${run_rc}, stderr: ${run_err}"
+      run_rc EQUAL 2 AND run_err MATCHES "pass --duration")
+
 # refusals: exit 2, the file named, the problem listed
 run_impulse(run "${DATA}/mujoco/hinge.xml" --duration 0.1)
 check("a hinge joint is refused with exit 2 and the documented message" "exit ${run_rc}, stderr: ${run_err}"

@@ -3,6 +3,8 @@
 // whose message reads "<source>: <JSON pointer of the field>: <what is wrong>", and a valid scene
 // becomes exactly the world it describes. Every bad case below is one edit of the same valid base
 // scene, so each test shows the single thing that makes a scene unusable.
+#include "geometry/mesh_queries.hpp"
+
 #include <impulse/io/scene.hpp>
 
 #include <gtest/gtest.h>
@@ -620,7 +622,8 @@ TEST(SceneLoaderMesh, ScaleAndResolutionAreApplied)
     const auto& mesh = std::get<impulse::Mesh>(twice.world.shape(twice.dynamicBodies.at(0)));
     EXPECT_NEAR(twice.world.mass(twice.dynamicBodies.at(0)) / once.world.mass(once.dynamicBodies.at(0)), 8.0, 1e-9);
     // 40 cells along the longest side of the body-frame box (the L's principal axes are its diagonals)
-    EXPECT_NEAR(mesh.geometry->cellSize(), (mesh.geometry->upper() - mesh.geometry->lower()).maxCoeff() / 40, 1e-15);
+    EXPECT_NEAR(impulse::MeshQueries::of(*mesh.geometry).cellSize(),
+                (mesh.geometry->upper() - mesh.geometry->lower()).maxCoeff() / 40, 1e-15);
     EXPECT_NEAR((mesh.geometry->upper() - mesh.geometry->lower()).maxCoeff(), 2.0 * 0.12 * std::sqrt(2.0), 1e-6);
 }
 

@@ -88,12 +88,43 @@ TEST(TrajectoryReader, RefusesEachDepartureNamingTheFileAndLine)
               "traj.csv: line 2: column z: not a finite number: \"1 \"");
     EXPECT_EQ(refusal(kHeader + row1), "traj.csv: line 2: expected body 0 (each sample lists bodies 0, 1, ... in "
                                        "order), got 1");
-    EXPECT_EQ(refusal(kHeader + row0 + row1 + row0), "traj.csv: line 4: the last sample has 1 bodies, the others 2");
     EXPECT_EQ(refusal(kHeader + "1,0,0,0,1,1,0,0,0,0,0,0,0,0,0\n" + row0), "traj.csv: line 3: time goes backwards");
     EXPECT_EQ(refusal(kHeader + row0 + "0.5,1,0,0,1,1,0,0,0,0,0,0,0,0,0\n"),
               "traj.csv: line 3: body 1 has a different time from body 0 of its sample");
     EXPECT_EQ(refusal(kHeader + "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n"),
               "traj.csv: line 2: orientation is not a unit quaternion");
+}
+
+// A run killed while writing leaves a file that stops anywhere: between two rows of a sample, or
+// in the middle of a row (whose last number may then be cut short: "1.2" of "1.25").
+TEST(TrajectoryReader, ReadsACutOffFileUpToItsLastWholeSampleAndSaysWhereItStops)
+{
+    const auto row = [](const std::string& t, int body)
+    { return t + "," + std::to_string(body) + ",0,0,1,1,0,0,0,0,0,-1.25,0,0,0\n"; };
+    const std::string whole = kHeader + row("0", 0) + row("0", 1) + row("0.5", 0) + row("0.5", 1);
+    EXPECT_EQ(parse(whole).cutOff, "");
+
+    // between the rows of the third sample
+    const auto betweenRows = parse(whole + row("1", 0));
+    EXPECT_EQ(betweenRows.sampleCount(), 2u);
+    EXPECT_EQ(betweenRows.samples.size(), 4u);
+    EXPECT_EQ(betweenRows.cutOff, "cut off at line 6 (an incomplete last sample of 1 of 2 bodies left out); 2 whole "
+                                  "samples up to t = 0.5 s");
+
+    // in the middle of a row: the row has no end of line
+    const std::string cutRow = row("1", 1).substr(0, 26);
+    const auto inARow = parse(whole + row("1", 0) + cutRow);
+    EXPECT_EQ(inARow.sampleCount(), 2u);
+    EXPECT_EQ(inARow.at(1, 1).linearVelocity.z(), -1.25);
+    EXPECT_EQ(inARow.cutOff, "cut off at line 7 (an incomplete last sample of 1 of 2 bodies and an unfinished row "
+                             "left out); 2 whole samples up to t = 0.5 s");
+    // the unfinished row is the only one missing: the samples before it stay whole
+    const auto lastRowCut = parse(whole.substr(0, whole.size() - 3));
+    EXPECT_EQ(lastRowCut.sampleCount(), 1u);
+    EXPECT_EQ(lastRowCut.cutOff.substr(0, 20), "cut off at line 5 (a");
+
+    // nothing whole at all
+    EXPECT_EQ(refusal(kHeader + row("0", 0).substr(0, 10)), "traj.csv: line 2: cut off before its first whole sample");
 }
 
 TEST(TrajectoryReader, AcceptsWindowsLineEndsAndNormalisesOrientation)

@@ -425,7 +425,7 @@ Real surfaceMismatch(const MeshGeometry& mesh, const Pose& pose, const std::vect
     Real worst = 0.0;
     for (const Vec3& vertex : reference)
     {
-        worst = std::max(worst, std::abs(mesh.exactDistance(pose.toLocal(referencePose.toWorld(vertex))).phi));
+        worst = std::max(worst, std::abs(mesh.signedDistance(pose.toLocal(referencePose.toWorld(vertex))).phi));
     }
     return worst;
 }

@@ -29,8 +29,9 @@ TEST(MeshContact, BallOnAMeshedBoxTouchesItsFaceAlongTheNormal)
     for (const Real gap : {0.0, 1e-7, -1e-3})
     {
         std::vector<ContactPoint> points;
+        NarrowPhaseScratch scratch;
         collideShapes(Sphere{0.2}, Pose::from(Vec3(0.13, -0.07, 0.3 + gap), Quat::Identity()), box, boxPose, 1e-6,
-                      points);
+                      points, scratch);
         ASSERT_EQ(points.size(), gap < 1e-6 ? 1u : 0u) << "gap " << gap;
         if (!points.empty())
         {
@@ -57,11 +58,12 @@ TEST(MeshContact, CrossedEdgesAreCaughtWhereNoVertexIsInside)
 
     for (const Vec3& v : bar.geometry->vertices())
     {
-        ASSERT_GT(bar.geometry->exactDistance(lower.toLocal(upper.toWorld(v))).phi, 0.0);
-        ASSERT_GT(bar.geometry->exactDistance(upper.toLocal(lower.toWorld(v))).phi, 0.0);
+        ASSERT_GT(bar.geometry->signedDistance(lower.toLocal(upper.toWorld(v))).phi, 0.0);
+        ASSERT_GT(bar.geometry->signedDistance(upper.toLocal(lower.toWorld(v))).phi, 0.0);
     }
     std::vector<ContactPoint> points;
-    collideShapes(bar, upper, bar, lower, 1e-6, points);
+    NarrowPhaseScratch scratch;
+    collideShapes(bar, upper, bar, lower, 1e-6, points, scratch);
     ASSERT_FALSE(points.empty());
     for (const ContactPoint& point : points)
     {

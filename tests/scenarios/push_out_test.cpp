@@ -194,8 +194,9 @@ TEST(PushOut, AWedgedRingIsTurnedFreeWhereNoTranslationCould)
                                           .orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitX()))});
     // the two sides hold the ring about equally deep, so no translation clears the sum of the two
     std::vector<ContactPoint> points;
+    NarrowPhaseScratch scratch;
     collideShapes(ring, Pose::from(centre, world.state(body).orientation), world.shape({0}),
-                  Pose::from(Vec3(0.0, 0.0, 0.3), Quat::Identity()), 0.0, points);
+                  Pose::from(Vec3(0.0, 0.0, 0.3), Quat::Identity()), 0.0, points, scratch);
     Real deepestTowardPlusY = 0.0;
     Real deepestTowardMinusY = 0.0;
     for (const ContactPoint& point : points)

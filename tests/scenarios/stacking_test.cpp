@@ -75,17 +75,23 @@ TEST(Stacking, PyramidsOfCubesComeToRestWhateverTheRoundOffOfTheirStart)
     }
 }
 
-TEST(ShockPropagation, WithoutItTheStackOfFiftyFallsWithinTwoSeconds)
+TEST(ShockPropagation, WithoutItTheStackOfFiftySinksWhereWithItItStands)
 {
-    // What shock propagation buys: the same contact pass without the final frozen sweep leaves the
-    // residual of ten two-way sweeps over fifty levels, and the stack does not stand. Push-out is
-    // off too: it moves positions after the fact and would hide the velocities' failure (with it
-    // on, the top still sinks 3 mm in the two seconds as push-out keeps undoing the overlaps).
-    io::Scene scene = loadReferenceScene("box_stack_50");
-    scene.options.shockPropagation = false;
-    scene.options.pushOut = false;
-    const StackRecord record = runStack(scene, 1e-3, 0.0, 2.0);
-    EXPECT_GT(record.topDisplacement, 0.1);
+    // What shock propagation buys: the contact pass alone, its Gauss-Seidel sweeps warm-started but
+    // never converged over fifty levels, leaves the stack a residual sinking every step; with the
+    // frozen sweep up the levels it is held to the solver's resolution. Push-out is off in both runs:
+    // it moves positions after the fact and would hide the velocities' failure. Over two seconds
+    // the top sinks by more than the standing oracle's millimetre without it, and by less than a
+    // micrometre with it.
+    const auto topDisplacement = [](bool shock)
+    {
+        io::Scene scene = loadReferenceScene("box_stack_50");
+        scene.options.shockPropagation = shock;
+        scene.options.pushOut = false;
+        return runStack(scene, 1e-3, 0.0, 2.0).topDisplacement;
+    };
+    EXPECT_GT(topDisplacement(false), 1e-3);
+    EXPECT_LT(topDisplacement(true), 1e-6);
 }
 
 TEST(Stacking, HeavyCubesOnLightOnesDoNotSink)

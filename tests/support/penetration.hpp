@@ -28,6 +28,7 @@ inline Penetration deepestPenetration(const World& world)
 {
     Penetration result;
     std::vector<ContactPoint> points;
+    NarrowPhaseScratch scratch;
     const std::uint32_t count = world.bodyCount();
     for (std::uint32_t i = 0; i < count; ++i)
     {
@@ -47,7 +48,7 @@ inline Penetration deepestPenetration(const World& world)
             }
             points.clear();
             collideShapes(world.shape({i}), Pose::from(a.position, a.orientation), world.shape({j}),
-                          Pose::from(b.position, b.orientation), 0.0, points);
+                          Pose::from(b.position, b.orientation), 0.0, points, scratch);
             const Real size = 2.0 * std::min(ra, rb);
             for (const ContactPoint& point : points)
             {

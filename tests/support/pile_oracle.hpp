@@ -176,6 +176,11 @@ class PileRun
             }
             out << '\n';
         }
+        out << "contacts " << snapshot.contacts.size() << "\n";
+        for (std::size_t i = 0; i < snapshot.contacts.size(); ++i)
+        {
+            out << hex(snapshot.contacts[i]) << ((i + 1) % 15 == 0 || i + 1 == snapshot.contacts.size() ? '\n' : ' ');
+        }
         out.flush();
         if (!out)
         {
@@ -193,8 +198,10 @@ class PileRun
             throw std::runtime_error(path + ": cannot open the checkpoint");
         }
         std::string line;
-        // version 1 is version 2 without the line deepest_sample
-        const bool hasSample = std::getline(in, line) && line == kMagic;
+        // version 2 is version 3 without the contacts, version 1 also without the line deepest_sample
+        std::getline(in, line);
+        const bool hasContacts = line == kMagic;
+        const bool hasSample = hasContacts || line == kMagicVersion2;
         if (!hasSample && line != kMagicVersion1)
         {
             throw std::runtime_error(path + ": line 1: not a pile checkpoint (expected \"" + std::string(kMagic) +
@@ -294,6 +301,29 @@ class PileRun
             b.angularVelocity = Vec3(values[10], values[11], values[12]);
             b.angularMomentum = Vec3(values[13], values[14], values[15]);
         }
+        if (hasContacts)
+        {
+            // the contact layer's points and loads: the next step starts from them
+            const Real size = number("contacts", field("contacts"));
+            const auto numbers = static_cast<std::size_t>(std::max(size, Real(0.0)));
+            if (size != static_cast<Real>(numbers))
+            {
+                throw std::runtime_error(path + ": line " + std::to_string(lineNumber) +
+                                         ": contacts: not a count: " + std::to_string(size));
+            }
+            snapshot.contacts.reserve(numbers);
+            std::string token;
+            while (snapshot.contacts.size() < numbers && in >> token)
+            {
+                snapshot.contacts.push_back(number("contacts", token));
+            }
+            if (snapshot.contacts.size() != numbers)
+            {
+                throw std::runtime_error(path + ": contacts: cut short after " +
+                                         std::to_string(snapshot.contacts.size()) + " of " + std::to_string(numbers) +
+                                         " numbers");
+            }
+        }
         try
         {
             scene_.world.restore(snapshot);
@@ -330,7 +360,8 @@ class PileRun
     }
 
   private:
-    static constexpr const char* kMagic = "impulse pile checkpoint 2";
+    static constexpr const char* kMagic = "impulse pile checkpoint 3";
+    static constexpr const char* kMagicVersion2 = "impulse pile checkpoint 2";
     static constexpr const char* kMagicVersion1 = "impulse pile checkpoint 1";
 
     static std::string hex(Real value)

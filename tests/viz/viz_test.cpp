@@ -162,10 +162,22 @@ TEST(Renderer, HidesWhatIsBehindWhateverOrderItIsDrawnIn)
     EXPECT_GT(pixel(renderFromX({front, back}, {shown}), 40, 30)[1], 200);
 }
 
-TEST(Renderer, FramingKeepsTheContentInThePicture)
+class Framing : public ::testing::TestWithParam<int>
+{
+};
+
+// From the default direction, from above (straight along up), and from the side
+TEST_P(Framing, KeepsTheContentInThePicture)
 {
     const Bounds bounds{Vec3(-0.1, -0.3, 0.0), Vec3(4.3, 0.1, 0.2)}; // a rolling ball's path
-    const Camera camera = frameCamera(bounds, Vec3::UnitZ(), 4.0 / 3.0);
+    const Vec3 directions[] = {Vec3::Zero(), Vec3(0.0, 0.0, 1.0), Vec3(1.0, -2.0, 0.5)};
+    const Vec3& direction = directions[GetParam()];
+    const Camera camera = direction.isZero() ? frameCamera(bounds, Vec3::UnitZ(), 4.0 / 3.0)
+                                             : frameCamera(bounds, Vec3::UnitZ(), 4.0 / 3.0, direction);
+    if (!direction.isZero())
+    {
+        EXPECT_GT((camera.eye - camera.target).normalized().dot(direction.normalized()), 0.99);
+    }
     const Vec3 back = (camera.eye - camera.target).normalized();
     const Vec3 right = camera.up.cross(back).normalized();
     const Vec3 up = back.cross(right);
@@ -185,6 +197,25 @@ TEST(Renderer, FramingKeepsTheContentInThePicture)
         widest = std::max(widest, std::abs(x));
     }
     EXPECT_GT(widest, 0.8) << "and fills it";
+}
+
+INSTANTIATE_TEST_SUITE_P(Directions, Framing, ::testing::Values(0, 1, 2));
+
+TEST(Framing, FramesTheDynamicBodiesNotTheStaticOnes)
+{
+    SceneView view;
+    view.dynamicShapes = {impulse::Sphere{0.1}};
+    view.staticBodies.push_back(
+        {impulse::Box{Vec3::Constant(1.0)}, impulse::Pose::from(Vec3(10.0, 0.0, 0.0), impulse::Quat::Identity())});
+    impulse::io::Trajectory trajectory;
+    trajectory.bodyCount = 1;
+    trajectory.times = {0.0, 1.0};
+    trajectory.samples.resize(2);
+    trajectory.samples[1].position = Vec3(0.0, 0.0, 1.0);
+    const Bounds moving = dynamicBounds(trajectory, view);
+    EXPECT_EQ(moving.min, Vec3(-0.1, -0.1, -0.1));
+    EXPECT_EQ(moving.max, Vec3(0.1, 0.1, 1.1));
+    EXPECT_GT(contentBounds(trajectory, view).max.x(), 9.0); // the static box counts for shadows
 }
 
 TEST(Png, ReadsBackWhatItWrites)

@@ -138,32 +138,45 @@ Vec3 toVec(Rgb c)
 
 Camera frameCamera(const Bounds& bounds, const Vec3& up, Real aspect)
 {
-    Camera camera;
-    camera.up = up.normalized();
-    camera.target = bounds.centre();
-    const Real radius = std::max(bounds.radius(), 0.05);
-    Vec3 e1 = Vec3::UnitX() - Vec3::UnitX().dot(camera.up) * camera.up;
+    const Vec3 u = up.normalized();
+    Vec3 e1 = Vec3::UnitX() - Vec3::UnitX().dot(u) * u;
     if (e1.norm() < 1e-6)
     {
-        e1 = Vec3::UnitY() - Vec3::UnitY().dot(camera.up) * camera.up;
+        e1 = Vec3::UnitY() - Vec3::UnitY().dot(u) * u;
     }
     e1.normalize();
-    const Vec3 e2 = camera.up.cross(e1);
+    const Vec3 e2 = u.cross(e1);
     // front right and above: motion along x reads left to right, heights read upward; content that
     // stays near one level (rolling, gliding) is seen from higher up, so its paths open out
     const Vec3 extent = bounds.max - bounds.min;
-    const Real vertical = std::abs(extent.dot(camera.up));
-    const Real horizontal = (extent - extent.dot(camera.up) * camera.up).norm();
+    const Real vertical = std::abs(extent.dot(u));
+    const Real horizontal = (extent - extent.dot(u) * u).norm();
     const Real azimuth = -65.0 * std::numbers::pi / 180.0;
     const Real elevation = (vertical < 0.25 * horizontal ? 40.0 : 22.0) * std::numbers::pi / 180.0;
     const Vec3 direction =
-        std::cos(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2) + std::sin(elevation) * camera.up;
+        std::cos(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2) + std::sin(elevation) * u;
+    return frameCamera(bounds, up, aspect, direction);
+}
+
+Camera frameCamera(const Bounds& bounds, const Vec3& up, Real aspect, const Vec3& direction)
+{
+    Camera camera;
+    camera.up = up.normalized();
+    Vec3 from = direction.normalized();
+    if (std::abs(from.dot(camera.up)) > 0.999)
+    {
+        // straight along up, the picture would have no up: tilt the view a little towards -y
+        const Vec3 side = Vec3::UnitY() - Vec3::UnitY().dot(camera.up) * camera.up;
+        from = (from - 0.05 * (side.norm() > 1e-6 ? side.normalized() : Vec3(Vec3::UnitX()))).normalized();
+    }
+    camera.target = bounds.centre();
+    const Real radius = std::max(bounds.radius(), 0.05);
     const Real halfY = 0.5 * camera.fovYDegrees * std::numbers::pi / 180.0;
     const Real halfX = std::atan(aspect * std::tan(halfY));
     // far enough for the bounding sphere; then as close as the eight corners of the box allow, so
     // that long thin content (a rolling ball's path) fills the picture
     const Real sphereDistance = 1.05 * radius / std::sin(std::min(halfX, halfY));
-    const Vec3 back = direction.normalized();
+    const Vec3 back = from;
     const Vec3 right = camera.up.cross(back).normalized();
     const Vec3 upInView = back.cross(right);
     auto fits = [&](Real distance)

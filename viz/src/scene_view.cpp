@@ -90,6 +90,26 @@ Bounds contentBounds(const io::Trajectory& trajectory, const SceneView& view)
     return {low, high};
 }
 
+Bounds dynamicBounds(const io::Trajectory& trajectory, const SceneView& view)
+{
+    if (trajectory.bodyCount == 0 || trajectory.sampleCount() == 0)
+    {
+        return contentBounds(trajectory, view);
+    }
+    Vec3 low = Vec3::Constant(INFINITY);
+    Vec3 high = Vec3::Constant(-INFINITY);
+    for (std::size_t i = 0; i < trajectory.sampleCount(); ++i)
+    {
+        for (std::size_t k = 0; k < trajectory.bodyCount; ++k)
+        {
+            const Real r = boundingRadius(view.dynamicShapes[k]);
+            low = low.cwiseMin(trajectory.at(i, k).position - Vec3::Constant(r));
+            high = high.cwiseMax(trajectory.at(i, k).position + Vec3::Constant(r));
+        }
+    }
+    return {low, high};
+}
+
 void checkMatches(const SceneView& view, const io::Trajectory& trajectory, const std::string& sceneName,
                   const std::string& trajectoryName)
 {

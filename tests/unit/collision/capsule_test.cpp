@@ -25,7 +25,8 @@ std::vector<ContactPoint> collide(const Shape& a, const Pose& poseA, const Shape
                                   Real threshold = 0.0)
 {
     std::vector<ContactPoint> out;
-    collideShapes(a, poseA, b, poseB, threshold, out);
+    NarrowPhaseScratch scratch;
+    collideShapes(a, poseA, b, poseB, threshold, out, scratch);
     return out;
 }
 

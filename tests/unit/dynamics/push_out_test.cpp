@@ -56,10 +56,11 @@ Real deepestOverlap(const RigidBody& cube, const std::vector<RigidBody>& walls)
 {
     Real deepest = 0.0;
     std::vector<ContactPoint> points;
+    NarrowPhaseScratch scratch;
     for (const RigidBody& wall : walls)
     {
         points.clear();
-        collideShapes(cube.shape, cube.pose(), wall.shape, wall.pose(), 0.0, points);
+        collideShapes(cube.shape, cube.pose(), wall.shape, wall.pose(), 0.0, points, scratch);
         for (const ContactPoint& point : points)
         {
             deepest = std::max(deepest, -point.phi);
@@ -81,9 +82,15 @@ TEST(PushOutOfSupports, AWedgedCubeIsTurnedNoFurtherThanMovesItsFarthestPointByT
     const Real clearingTurn = kOverlap / (kHalf * (std::cos(kTilt) - std::sin(kTilt)));
     ASSERT_GT(clearingTurn * cube.boundingRadius, 1.5 * kOverlap);
     const Quat start = cube.orientation;
-    const std::vector<Support> supports = {{&walls[0], 0.5}, {&walls[1], 0.5}};
+    // the cube's points in both walls, normals from the walls toward the cube
+    std::vector<ContactPoint> points;
+    NarrowPhaseScratch narrowPhase;
+    for (const RigidBody& wall : walls)
+    {
+        collideShapes(cube.shape, cube.pose(), wall.shape, wall.pose(), 0.0, points, narrowPhase);
+    }
     PushOutScratch scratch;
-    ASSERT_TRUE(pushOutOfSupports(cube, supports, 1e-4, 1.0, scratch)); // reach: far more than needed
+    ASSERT_TRUE(pushOutOfSupports(cube, points, 1e-4, 1.0, scratch)); // reach: far more than needed
 
     const Real turned = cube.orientation.angularDistance(start);
     EXPECT_NEAR(turned * cube.boundingRadius, kOverlap, 1e-12) << "the farthest point moved by the overlap";

@@ -2,6 +2,7 @@
 // Triangle meshes as solids: validation, mass properties by polyhedral integration against the
 // analytic solids, the body frame, and the signed distance (grid and exact) against analytic
 // distances.
+#include "geometry/mesh_queries.hpp"
 #include "geometry/signed_distance_grid.hpp"
 
 #include <impulse/io/mesh_file.hpp>
@@ -21,6 +22,31 @@ namespace impulse
 {
 namespace
 {
+
+// The narrow phase's view of a mesh, and its queries, each with buffers of its own.
+const MeshQueries& queries(const MeshGeometry& mesh)
+{
+    return MeshQueries::of(mesh);
+}
+
+MeshDistance exactDistance(const MeshGeometry& mesh, const Vec3& p)
+{
+    MeshQueryScratch scratch;
+    return queries(mesh).exactDistance(p, scratch);
+}
+
+MeshDistance contactDistance(const MeshGeometry& mesh, const Vec3& p,
+                             Real threshold = std::numeric_limits<Real>::infinity())
+{
+    MeshQueryScratch scratch;
+    return queries(mesh).distance(p, threshold, scratch);
+}
+
+void segmentCrossings(const MeshGeometry& mesh, const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave)
+{
+    MeshQueryScratch scratch;
+    queries(mesh).segmentCrossings(a, b, enterLeave, scratch);
+}
 
 Real analyticBoxDistance(const Vec3& half, const Vec3& p)
 {
@@ -46,7 +72,7 @@ bool beyondTheGrid(const MeshGeometry& mesh, const Vec3& p)
 {
     const Vec3 centre = 0.5 * (mesh.lower() + mesh.upper());
     const Vec3 half = 0.5 * (mesh.upper() - mesh.lower());
-    return ((p - centre).cwiseAbs() - half).maxCoeff() > SignedDistanceGrid::kPadding * mesh.cellSize();
+    return ((p - centre).cwiseAbs() - half).maxCoeff() > SignedDistanceGrid::kPadding * queries(mesh).cellSize();
 }
 
 std::string buildError(const TriangleMesh& mesh)
@@ -238,11 +264,11 @@ TEST(MeshDistance, GridOfAMeshedSphereIsWithinHalfACellOfTheBall)
 {
     const Real r = 1.0;
     const auto sphere = MeshGeometry::build(sphereMesh(r, 48, 96), {32});
-    const Real cell = sphere->cellSize();
+    const Real cell = queries(*sphere).cellSize();
     // the mesh lies within r (1 - cos(pi/48)) ~ 0.002 of the ball: far below half a cell (0.03)
     for (const Vec3& p : samplePoints(Vec3::Constant(r + 3.0 * cell), 20000, 1))
     {
-        EXPECT_NEAR(sphere->gridDistance(p).phi, p.norm() - r, 0.5 * cell) << p.transpose();
+        EXPECT_NEAR(queries(*sphere).gridDistance(p).phi, p.norm() - r, 0.5 * cell) << p.transpose();
     }
 }
 
@@ -250,10 +276,10 @@ TEST(MeshDistance, GridOfAMeshedBoxIsWithinHalfACellOfTheBox)
 {
     const Vec3 half(0.3, 0.2, 0.1);
     const auto box = MeshGeometry::build(boxMesh(half), {32});
-    const Real cell = box->cellSize();
+    const Real cell = queries(*box).cellSize();
     for (const Vec3& p : samplePoints(half + Vec3::Constant(3.0 * cell), 20000, 2))
     {
-        EXPECT_NEAR(box->gridDistance(p).phi, analyticBoxDistance(half, p), 0.5 * cell) << p.transpose();
+        EXPECT_NEAR(queries(*box).gridDistance(p).phi, analyticBoxDistance(half, p), 0.5 * cell) << p.transpose();
     }
 }
 
@@ -263,13 +289,13 @@ TEST(MeshDistance, ExactDistanceOfAMeshedBoxIsTheBoxDistanceEverywhere)
     const auto box = MeshGeometry::build(boxMesh(half, 2));
     for (const Vec3& p : samplePoints(2.0 * half, 20000, 3))
     {
-        const MeshDistance d = box->exactDistance(p);
+        const MeshDistance d = exactDistance(*box, p);
         ASSERT_NEAR(d.phi, analyticBoxDistance(half, p), 1e-14) << p.transpose();
         ASSERT_NEAR(d.gradient.norm(), 1.0, 1e-12);
     }
     // outside a face, the gradient is the face's normal; inside, the nearest face's
-    EXPECT_LT((box->exactDistance(Vec3(0.1, 0.05, 0.3)).gradient - Vec3::UnitZ()).norm(), 1e-14);
-    EXPECT_LT((box->exactDistance(Vec3(0.28, 0.0, 0.0)).gradient - Vec3::UnitX()).norm(), 1e-14);
+    EXPECT_LT((exactDistance(*box, Vec3(0.1, 0.05, 0.3)).gradient - Vec3::UnitZ()).norm(), 1e-14);
+    EXPECT_LT((exactDistance(*box, Vec3(0.28, 0.0, 0.0)).gradient - Vec3::UnitX()).norm(), 1e-14);
 }
 
 TEST(MeshDistance, ContactNormalOnARidgeIsTheBisectorNotOneFace)
@@ -278,7 +304,7 @@ TEST(MeshDistance, ContactNormalOnARidgeIsTheBisectorNotOneFace)
     // is nearest one of the facets beside it by round-off; the contact normal must not take that
     // facet's tilt of 11.25 degrees (the facets' own twist leaves a fraction of a degree)
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
-    const MeshDistance d = torus->distance(Vec3(0.2, 0.0, 0.05 - 1e-9));
+    const MeshDistance d = contactDistance(*torus, Vec3(0.2, 0.0, 0.05 - 1e-9));
     EXPECT_NEAR(d.phi, -1e-9 * std::cos(11.25 * std::numbers::pi / 180.0), 1e-12);
     EXPECT_GT(d.gradient.z(), std::cos(2.0 * std::numbers::pi / 180.0)) << d.gradient.transpose();
 }
@@ -290,7 +316,8 @@ TEST(MeshDistance, OutsideTheGridDistanceGrowsWithTheWayToTheGrid)
     {
         for (const Real distance : {2.0, 10.0})
         {
-            EXPECT_NEAR(sphere->gridDistance((1.0 + distance) * direction).phi, distance, 0.5 * sphere->cellSize());
+            EXPECT_NEAR(queries(*sphere).gridDistance((1.0 + distance) * direction).phi, distance,
+                        0.5 * queries(*sphere).cellSize());
         }
     }
 }
@@ -301,15 +328,15 @@ TEST(MeshDistance, CoarseLowerBoundNeverExceedsTheExactDistance)
     // inside, beyond the exact band and outside the grid, where the grid's own extension is an upper
     // bound of phi, not a lower one
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
-    const Real cell = torus->cellSize();
+    const Real cell = queries(*torus).cellSize();
     Real tightest = std::numeric_limits<Real>::infinity();
     int outsideTheGrid = 0;
     for (const Vec3& reach : {Vec3(0.25 + 2.0 * cell, 0.25 + 2.0 * cell, 0.05 + 2.0 * cell), Vec3(0.7, 0.7, 0.5)})
     {
         for (const Vec3& p : samplePoints(reach, 4000, 4))
         {
-            const Real exact = torus->exactDistance(p).phi;
-            const Real bound = torus->coarseLowerBound(p);
+            const Real exact = exactDistance(*torus, p).phi;
+            const Real bound = queries(*torus).coarseLowerBound(p);
             EXPECT_LE(bound, exact) << p.transpose();
             tightest = std::min(tightest, exact - bound);
             outsideTheGrid += beyondTheGrid(*torus, p) ? 1 : 0;
@@ -335,7 +362,8 @@ TEST(MeshDistance, CoarseLowerBoundHoldsForEveryShippedMesh)
         for (const Vec3& unit : samplePoints(Vec3::Constant(2.5), 3000, 6))
         {
             const Vec3 p = centre + half.cwiseProduct(unit);
-            EXPECT_LE(mesh->coarseLowerBound(p), mesh->exactDistance(p).phi) << name << " at " << p.transpose();
+            EXPECT_LE(queries(*mesh).coarseLowerBound(p), exactDistance(*mesh, p).phi)
+                << name << " at " << p.transpose();
             outsideTheGrid += beyondTheGrid(*mesh, p) ? 1 : 0;
         }
         EXPECT_GT(outsideTheGrid, 1000) << name;
@@ -347,13 +375,13 @@ TEST(MeshDistance, PointsWithinTheThresholdAreFoundOutsideTheGridToo)
     // a capsule's sample balls ask with threshold + radius, which can reach past the grid, where the
     // grid's extension exceeds phi: a point within the threshold must still come back as such
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
-    const Real cell = torus->cellSize();
+    const Real cell = queries(*torus).cellSize();
     int outsideTheGrid = 0;
     for (const Vec3& p : samplePoints(Vec3(0.7, 0.7, 0.5), 4000, 5))
     {
-        const Real exact = torus->exactDistance(p).phi;
+        const Real exact = exactDistance(*torus, p).phi;
         const Real threshold = exact + 0.25 * cell;
-        const MeshDistance d = torus->distance(p, threshold);
+        const MeshDistance d = contactDistance(*torus, p, threshold);
         EXPECT_LT(d.phi, threshold) << p.transpose();
         EXPECT_NEAR(d.phi, exact, 1e-12) << p.transpose();
         outsideTheGrid += beyondTheGrid(*torus, p) ? 1 : 0;
@@ -365,15 +393,15 @@ TEST(MeshDistance, SegmentCrossingsOfABoxAreItsFaces)
 {
     const auto box = MeshGeometry::build(boxMesh(Vec3(0.3, 0.2, 0.1), 3));
     std::vector<Real> enterLeave;
-    box->segmentCrossings(Vec3(-1.0, 0.01, 0.02), Vec3(1.0, 0.01, 0.02), enterLeave);
+    segmentCrossings(*box, Vec3(-1.0, 0.01, 0.02), Vec3(1.0, 0.01, 0.02), enterLeave);
     ASSERT_EQ(enterLeave.size(), 2u);
     EXPECT_NEAR(enterLeave[0], 0.35, 1e-14);
     EXPECT_NEAR(enterLeave[1], 0.65, 1e-14);
     // through an edge of the subdivided face: still one passage
-    box->segmentCrossings(Vec3(-1.0, 0.2 / 3.0, 0.1 / 3.0), Vec3(1.0, 0.2 / 3.0, 0.1 / 3.0), enterLeave);
+    segmentCrossings(*box, Vec3(-1.0, 0.2 / 3.0, 0.1 / 3.0), Vec3(1.0, 0.2 / 3.0, 0.1 / 3.0), enterLeave);
     EXPECT_EQ(enterLeave.size(), 2u);
     // ending inside: no passage
-    box->segmentCrossings(Vec3(-1.0, 0.0, 0.0), Vec3(0.0, 0.0, 0.0), enterLeave);
+    segmentCrossings(*box, Vec3(-1.0, 0.0, 0.0), Vec3(0.0, 0.0, 0.0), enterLeave);
     EXPECT_TRUE(enterLeave.empty());
 }
 
@@ -402,9 +430,9 @@ TEST(MeshBuild, SharedGeometryIsBuiltOnceAndReportsItsGrid)
 {
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16), {64});
     // 64 cells over the longest side (0.5) plus 3 cells of padding each side
-    EXPECT_NEAR(torus->cellSize(), 0.5 / 64, 1e-15);
-    EXPECT_EQ(torus->gridSamples()[0], 64 + 6 + 1);
-    EXPECT_EQ(torus->edges().size(), 3u * 40u * 16u); // a torus: E = 3F/2, F = 2 * 40 * 16
+    EXPECT_NEAR(queries(*torus).cellSize(), 0.5 / 64, 1e-15);
+    EXPECT_EQ(queries(*torus).gridSamples()[0], 64 + 6 + 1);
+    EXPECT_EQ(queries(*torus).edges().size(), 3u * 40u * 16u); // a torus: E = 3F/2, F = 2 * 40 * 16
 }
 
 TEST(MeshBuild, VertexClustersCoverEveryVertexOnceWithinTheirSpheres)
@@ -412,15 +440,15 @@ TEST(MeshBuild, VertexClustersCoverEveryVertexOnceWithinTheirSpheres)
     const auto torus = MeshGeometry::build(torusMesh(0.2, 0.05, 40, 16));
     std::vector<int> seen(torus->vertices().size(), 0);
     std::uint32_t next = 0;
-    for (const MeshGeometry::VertexCluster& cluster : torus->vertexClusters())
+    for (const MeshQueries::VertexCluster& cluster : queries(*torus).vertexClusters())
     {
         EXPECT_EQ(cluster.first, next);
         EXPECT_GT(cluster.count, 0u);
-        EXPECT_LE(cluster.count, MeshGeometry::kClusterSize);
+        EXPECT_LE(cluster.count, MeshQueries::kClusterSize);
         next += cluster.count;
         for (std::uint32_t i = cluster.first; i < cluster.first + cluster.count; ++i)
         {
-            const std::uint32_t v = torus->vertexClusterMembers()[i];
+            const std::uint32_t v = queries(*torus).vertexClusterMembers()[i];
             ++seen[v];
             EXPECT_LE((torus->vertices()[v] - cluster.centre).norm(), cluster.radius);
         }

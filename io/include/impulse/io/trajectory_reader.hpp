@@ -36,6 +36,10 @@ struct Trajectory
     std::vector<Real> times;         ///< seconds, non-decreasing
     std::size_t bodyCount = 0;       ///< dynamic bodies, numbered from 0
     std::vector<BodySample> samples; ///< sample i, body k at [i * bodyCount + k]
+    /// Empty for a whole file. For a file cut off while it was written (a run killed, a disk full):
+    /// where it stops and what was left out, e.g. "cut off at line 5003 (an incomplete last sample
+    /// dropped); 1250 whole samples up to t = 1.249 s".
+    std::string cutOff;
 
     std::size_t sampleCount() const { return times.size(); }
     const BodySample& at(std::size_t sample, std::size_t body) const { return samples[sample * bodyCount + body]; }
@@ -43,7 +47,9 @@ struct Trajectory
 
 /// Reads a trajectory CSV as `impulse run --out` writes it (docs/cli.md): the exact header, then
 /// for each sample one row per body, bodies 0, 1, ... in order, every number finite. Throws
-/// TrajectoryError naming the file and the line on any departure, including an empty file.
+/// TrajectoryError naming the file and the line on any departure, including an empty file. A file
+/// that was cut off is read up to its last whole sample, with Trajectory::cutOff saying so: its last
+/// line has no end of line (the writer ends every row with one), or its last sample lacks bodies.
 Trajectory readTrajectory(const std::filesystem::path& path);
 
 /// Parses trajectory CSV text from a stream; `source` names it in error messages.

@@ -31,6 +31,8 @@ struct Camera
 /// A camera looking at `bounds` from the front right and a little above (with `up` as up), far
 /// enough for the bounding sphere to fit the picture.
 Camera frameCamera(const Bounds& bounds, const Vec3& up, Real aspect);
+/// The same, looking from `direction` (from the content towards the eye, any length).
+Camera frameCamera(const Bounds& bounds, const Vec3& up, Real aspect, const Vec3& direction);
 
 /// A mesh placed in the world.
 struct DrawnMesh

@@ -51,6 +51,8 @@ struct Bounds
     Real radius() const { return 0.5 * (max - min).norm(); }
 };
 Bounds contentBounds(const io::Trajectory& trajectory, const SceneView& view);
+/// The same for the dynamic bodies alone (contentBounds when there are none): what a picture frames.
+Bounds dynamicBounds(const io::Trajectory& trajectory, const SceneView& view);
 
 /// Checks that the scene and the trajectory describe the same dynamic bodies; throws
 /// io::TrajectoryError naming both files otherwise.

@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Resolving one pair of bodies: the inner loop shared by the collision and the contact pass.
+// The collision pass of GBF03 sec. 4: resolving one pair of bodies elastically.
 //
-// Detection and depth ranking happen at the predicted poses (GBF03 sec. 4): only the deepest point
-// that is still approaching gets an impulse, then both bodies are re-predicted and the pair is
-// searched again, so several corners of a box share the work in the order of their depth.
+// Detection and depth ranking happen at the predicted poses: only the deepest point that is still
+// approaching gets an impulse, then both bodies are re-predicted and the pair is searched again, so
+// several corners of a box share the work in the order of their depth. Several points that approach
+// at once (a box landing flat) are first given their restitution together, as one small problem
+// solved by the contact rows' Gauss-Seidel (contact_solver.hpp).
 //
-// Several points that approach at once form a contact patch and are first resolved together
-// (contact_patch.cpp); when the patch does not stick, the deepest point is resolved alone.
-//
-// Two refinements apply to the collision pass only, each switchable in StepOptions:
+// Two refinements, each switchable in StepOptions:
 // - mid-step restitution: the approach test uses the state velocity v (a resting body never
 //   approaches: no threshold), but the impulse is sized with the normal velocity at time n,
 //   v + dt a/2, because symplectic Euler's v lives at the half step. For eps = 1 this keeps the
@@ -17,13 +16,16 @@
 // - time-of-impact geometry: the contact point, normal and lever arms are taken where the bodies
 //   first touch within the step (regula falsi on the pair's least signed distance along the
 //   predicted path) rather than at the overlapping predicted pose.
-#include "dynamics/pair_resolution.hpp"
+#include "dynamics/collision_pass.hpp"
 
 #include "collision/narrow_phase.hpp"
-#include "dynamics/contact_patch.hpp"
+#include "dynamics/contact_solver.hpp"
 #include "dynamics/impulse.hpp"
 #include "dynamics/integrate.hpp"
+#include "dynamics/rigid_patch.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -36,7 +38,8 @@ constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 Vec3 predictionVelocity(const RigidBody& body, const PassSettings& settings)
 {
-    return settings.predictWithAcceleration ? Vec3(body.linearVelocity + settings.dt * settings.gravity)
+    // the body's own acceleration: gravity and the forces applied for this step
+    return settings.predictWithAcceleration ? Vec3(body.linearVelocity + settings.dt * body.acceleration)
                                             : body.linearVelocity;
 }
 
@@ -65,8 +68,8 @@ Pose poseAtFraction(const RigidBody& body, const PassSettings& settings, Real fr
 Real midStepCorrection(const RigidBody& a, const RigidBody& b, Real un, const Vec3& normal,
                        const PassSettings& settings)
 {
-    const Vec3 accelerationA = a.dynamic ? settings.gravity : Vec3::Zero();
-    const Vec3 accelerationB = b.dynamic ? settings.gravity : Vec3::Zero();
+    const Vec3 accelerationA = a.dynamic ? a.acceleration : Vec3::Zero();
+    const Vec3 accelerationB = b.dynamic ? b.acceleration : Vec3::Zero();
     const Real an = (accelerationA - accelerationB).dot(normal);
     if (!(an < 0.0))
     {
@@ -99,13 +102,14 @@ const ContactPoint* deepestApproaching(const RigidBody& a, const Pose& poseA, co
 // Moves `contact`, `poseA` and `poseB` back to the first touch of the pair within the step, when the
 // pair was apart at time n and overlaps at the predicted pose.
 void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings& settings,
-                      std::vector<ContactPoint>& scratch, ContactPoint& contact, Pose& poseA, Pose& poseB)
+                      std::vector<ContactPoint>& scratch, NarrowPhaseScratch& narrowPhase, ContactPoint& contact,
+                      Pose& poseA, Pose& poseB)
 {
     const auto distanceAt = [&](Real fraction, Pose& pa, Pose& pb)
     {
         pa = poseAtFraction(a, settings, fraction);
         pb = poseAtFraction(b, settings, fraction);
-        return leastSignedDistance(a.shape, pa, b.shape, pb, scratch);
+        return leastSignedDistance(a.shape, pa, b.shape, pb, narrowPhase);
     };
     Pose pa;
     Pose pb;
@@ -150,7 +154,7 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     pa = poseAtFraction(a, settings, hi);
     pb = poseAtFraction(b, settings, hi);
     scratch.clear();
-    collideShapes(a.shape, pa, b.shape, pb, kInfinity, scratch);
+    collideShapes(a.shape, pa, b.shape, pb, kInfinity, scratch, narrowPhase);
     if (const ContactPoint* touch = deepestApproaching(a, pa, b, pb, kInfinity, scratch, settings))
     {
         contact = *touch;
@@ -203,40 +207,31 @@ bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact
     return true;
 }
 
-// The most points resolved together as one patch. A box on two boxes gives up to eight points on
-// each once it has turned a little about the vertical (the clipped faces are then octagons, not
-// rectangles); resolved one pair at a time instead, such a box keeps a twist and slip that no
-// single pair's impulse removes, and a pyramid of cubes never comes to rest.
-constexpr std::size_t kMaxPatchPoints = 16;
-// What a mesh's patch is thinned to (reducePatch).
-constexpr std::size_t kMeshPatchPoints = 8;
+// What a patch of a mesh is thinned to (thinPatch).
+constexpr std::size_t kMeshPatchPoints = 16;
 
-// Keeps at most kMeshPatchPoints points of a large patch of a mesh (lying on a face, a mesh touches
-// at many vertices): the deepest, then each time the point farthest from those kept. The kept points
-// span the contact region, and a rigid motion that does not approach at the corners of a region does
-// not approach inside it. Patches of analytic shapes are left whole: a pair of them gives at most
-// eight points and a body on two such supports at most sixteen; a larger patch falls back to its pairs.
-void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
+// Keeps at most kMeshPatchPoints points of a large patch with a mesh (lying on a face, a mesh
+// touches at many vertices): the deepest, then each time the point farthest from those kept. The
+// kept points span the contact region, and a rigid motion that does not approach at the corners of
+// a region does not approach inside it. Patches of analytic shapes are at most eight points.
+void thinPatch(std::vector<ContactPoint>& patch, SolverScratch& scratch)
 {
-    const auto isMesh = [](const RigidBody& b) { return std::holds_alternative<Mesh>(b.shape); };
-    if (patch.size() <= kMeshPatchPoints ||
-        !(isMesh(body) ||
-          std::any_of(patch.begin(), patch.end(), [&](const PatchPoint& p) { return isMesh(*p.other); })))
+    if (patch.size() <= kMeshPatchPoints)
     {
         return;
     }
     std::size_t deepest = 0;
     for (std::size_t k = 1; k < patch.size(); ++k)
     {
-        deepest = patch[k].contact.phi < patch[deepest].contact.phi ? k : deepest;
+        deepest = patch[k].phi < patch[deepest].phi ? k : deepest;
     }
-    thread_local std::vector<PatchPoint> kept;
-    thread_local std::vector<Real> gap;
+    std::vector<ContactPoint>& kept = scratch.kept;
+    std::vector<Real>& gap = scratch.gap;
     kept.assign(1, patch[deepest]);
     gap.resize(patch.size());
     for (std::size_t k = 0; k < patch.size(); ++k)
     {
-        gap[k] = (patch[k].contact.point - patch[deepest].contact.point).squaredNorm();
+        gap[k] = (patch[k].point - patch[deepest].point).squaredNorm();
     }
     while (kept.size() < kMeshPatchPoints)
     {
@@ -248,47 +243,23 @@ void reducePatch(const RigidBody& body, std::vector<PatchPoint>& patch)
         kept.push_back(patch[farthest]);
         for (std::size_t k = 0; k < patch.size(); ++k)
         {
-            gap[k] = std::min(gap[k], (patch[k].contact.point - patch[farthest].contact.point).squaredNorm());
+            gap[k] = std::min(gap[k], (patch[k].point - patch[farthest].point).squaredNorm());
         }
     }
     patch.swap(kept); // kept keeps the storage for the next call
 }
 
-// Appends the touching points of `body` against `other` that approach, as patch points.
-void collectApproaching(const RigidBody& body, RigidBody& other, Real friction, const PassSettings& settings,
-                        const std::vector<ContactPoint>& points, std::vector<PatchPoint>& patch)
-{
-    for (const ContactPoint& point : points)
-    {
-        if (point.phi < settings.threshold &&
-            approachSpeed(body, body.predicted, other, other.predicted, point, settings) < 0.0)
-        {
-            patch.push_back({point, &other, friction});
-        }
-    }
-}
-
-// Do all points of the patch share one normal (a face on a face)? Meshes touching along curved or
-// faceted surfaces give patches whose normals differ; the least-squares patch cannot re-spread
-// those, and one point at a time they rock each other, so they go to the projected solve.
-bool planar(const std::vector<PatchPoint>& patch)
-{
-    return std::all_of(patch.begin(), patch.end(),
-                       [&](const PatchPoint& p) { return p.contact.normal.isApprox(patch[0].contact.normal, 1e-9); });
-}
-
 // The restitution threshold applies per patch as it does per point: all slow means no bounce.
-Real patchRestitution(const RigidBody& body, Real eps, const std::vector<PatchPoint>& patch,
+Real patchRestitution(const RigidBody& a, const RigidBody& b, Real eps, const std::vector<ContactPoint>& patch,
                       const PassSettings& settings)
 {
     if (!(eps > 0.0) || !(settings.restitutionThreshold > 0.0))
     {
         return eps;
     }
-    for (const PatchPoint& point : patch)
+    for (const ContactPoint& point : patch)
     {
-        if (closingSpeed(body, body.predicted, *point.other, point.other->predicted, point.contact) >=
-            settings.restitutionThreshold)
+        if (closingSpeed(a, a.predicted, b, b.predicted, point) >= settings.restitutionThreshold)
         {
             return eps;
         }
@@ -296,13 +267,79 @@ Real patchRestitution(const RigidBody& body, Real eps, const std::vector<PatchPo
     return 0.0;
 }
 
+// Gives every point of the patch its restitution at once: the rows of the points, each with the
+// target normal velocity -eps u_n (u_n with the mid-step correction) and no slip, solved together by
+// projected Gauss-Seidel (loads >= 0, friction within the cone). A box landing flat then bounces
+// flat, where one corner at a time would set it spinning. Applied only if it adds no kinetic energy
+// (to 1e-9 of it): targets out of reach at a pinch, two normals nearly opposed, can make the loads
+// fight each other; the deepest point alone then takes over.
+bool applyPatchRestitution(RigidBody& a, RigidBody& b, const std::vector<ContactPoint>& patch, Real eps, Real mu,
+                           const PassSettings& settings, SolverScratch& scratch)
+{
+    constexpr int kPatchSweeps = 16;
+    std::array<SolverBody, 2> bodies = {SolverBody::of(a), SolverBody::of(b)};
+    std::vector<ContactRow>& rows = scratch.rows;
+    rows.clear();
+    Real speed = 0.0;
+    for (const ContactPoint& point : patch)
+    {
+        Vec3 t1;
+        Vec3 t2;
+        tangentBasis(point.normal, t1, t2);
+        ContactRow row =
+            makeContactRow(RowSide::of(a, 0, a.predicted), RowSide::of(b, 1, b.predicted), point, t1, t2, mu);
+        row.gap = -kInfinity; // in play throughout
+        const Real un = row.relativeVelocity(0, bodies[0], bodies[1]);
+        const Real correction = settings.midStepRestitution ? midStepCorrection(a, b, un, point.normal, settings) : 0.0;
+        row.bias = -eps * (un + correction) - correction;
+        speed = std::max(speed, std::abs(un));
+        rows.push_back(row);
+    }
+    const Real before = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
+    // one rigid motion meets every target when the patch sticks; else Gauss-Seidel lets points slide
+    std::vector<ContactRow*>& pointers = scratch.pointers;
+    pointers.clear();
+    for (ContactRow& row : rows)
+    {
+        pointers.push_back(&row);
+    }
+    const auto mover = [&](const RigidBody& body, std::uint32_t index) {
+        return PatchMover{index, body.predicted.position, body.invMass, body.invInertiaWorld};
+    };
+    const PatchMover moverA = mover(a, 0);
+    const PatchMover moverB = mover(b, 1);
+    const bool rigid = a.dynamic
+                           ? solveRigidPatch(pointers, bodies, moverA, b.dynamic ? &moverB : nullptr,
+                                             kSolverResolution * speed, scratch)
+                           : solveRigidPatch(pointers, bodies, moverB, nullptr, kSolverResolution * speed, scratch);
+    if (!rigid)
+    {
+        solveRows(rows, bodies, RowSettings{}, kPatchSweeps, kSolverResolution * speed, Sweeps::Accelerated, scratch);
+    }
+    const Real after = bodies[0].kineticEnergy() + bodies[1].kineticEnergy();
+    if (!(after <= before * (1.0 + 1e-9)))
+    {
+        return false;
+    }
+    if (a.dynamic)
+    {
+        bodies[0].storeInto(a);
+    }
+    if (b.dynamic)
+    {
+        bodies[1].storeInto(b);
+    }
+    return true;
+}
+
 } // namespace
 
 // Normal relative velocity at a point when the pair approaches there, zero otherwise. Approach is
-// measured net of round-off: a normal velocity within 64 ulp of the velocities it is computed from
-// is zero, so resolved contacts are not chased through floating-point noise. This is no velocity
-// threshold (it is ~1e-16 m/s for a body at rest): it only keeps the passes from spending their
-// iterations on noise.
+// measured net of the contact solver's resolution: the contact passes leave resting contacts still to
+// within kSolverResolution of the speeds involved, so a normal velocity within that of the velocities
+// it is computed from is zero, and resolved contacts are not chased through the solver's remainder.
+// This is no velocity threshold (about 1e-11 m/s for a body at rest under gravity at dt = 1 ms): a
+// bounce that slow would rise by 1e-23 m.
 Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                    const ContactPoint& point, const PassSettings& settings)
 {
@@ -316,7 +353,7 @@ Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, co
     }
     const Real magnitude = a.linearVelocity.norm() + a.angularVelocity.norm() * ra.norm() + b.linearVelocity.norm() +
                            b.angularVelocity.norm() * rb.norm() + settings.dt * settings.gravity.norm();
-    return un < -64.0 * std::numeric_limits<Real>::epsilon() * magnitude ? un : 0.0;
+    return un < -kSolverResolution * magnitude ? un : 0.0;
 }
 
 // Relative velocity at a point, with the mid-step correction of the collision pass.
@@ -345,45 +382,49 @@ void predictBody(RigidBody& body, const PassSettings& settings)
     }
 }
 
-Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
-                       std::vector<ContactPoint>& scratch)
+Resolution resolveCollision(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
+                            ContactScratch& detection, SolverScratch& scratch)
 {
-    thread_local std::vector<PatchPoint> patch; // kept per thread: allocates only when a patch is larger than before
+    std::vector<ContactPoint>& found = detection.detected;
+    std::vector<ContactPoint>& patch = scratch.patch; // the approaching points
     int applied = 0;
     for (int iteration = 0; iteration < settings.pairIterations; ++iteration)
     {
-        scratch.clear();
-        collideShapes(a.shape, a.predicted, b.shape, b.predicted, settings.threshold, scratch);
+        found.clear();
+        collideShapes(a.shape, a.predicted, b.shape, b.predicted, settings.threshold, found, detection.narrowPhase);
         patch.clear();
-        collectApproaching(a, b, mu, settings, scratch, patch);
+        for (const ContactPoint& point : found)
+        {
+            if (point.phi < settings.threshold && approachSpeed(a, a.predicted, b, b.predicted, point, settings) < 0.0)
+            {
+                patch.push_back(point);
+            }
+        }
         if (patch.empty())
         {
             return {applied, applied == 0};
         }
-        reducePatch(a, patch);
-        const Real patchEps = patchRestitution(a, eps, patch, settings);
-        if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
-            (applyPatchImpulse(a, patch, patchEps, settings) ||
-             (!planar(patch) && applyProjectedPatchImpulse(a, patch, patchEps, settings))))
+        thinPatch(patch, scratch);
+        if (patch.size() > 1 &&
+            applyPatchRestitution(a, b, patch, patchRestitution(a, b, eps, patch, settings), mu, settings, scratch))
         {
-            // every approaching point has its target: repeating would only compound a negative
-            // restitution of the ramp, or chase round-off
+            // every approaching point has its target: the next search finds them separating
             predictBody(a, settings);
             predictBody(b, settings);
             ++applied;
-            break;
+            continue;
         }
         // the deepest approaching point, the first of equally deep ones
-        ContactPoint contact = patch[0].contact;
-        for (const PatchPoint& point : patch)
+        ContactPoint contact = patch[0];
+        for (const ContactPoint& point : patch)
         {
-            contact = point.contact.phi < contact.phi ? point.contact : contact;
+            contact = point.phi < contact.phi ? point : contact;
         }
         Pose poseA = a.predicted;
         Pose poseB = b.predicted;
         if (settings.timeOfImpactGeometry)
         {
-            moveToFirstTouch(a, b, settings, scratch, contact, poseA, poseB);
+            moveToFirstTouch(a, b, settings, found, detection.narrowPhase, contact, poseA, poseB);
         }
         if (!applyContactImpulse(a, b, contact, poseA, poseB, eps, mu, settings))
         {
@@ -392,67 +433,8 @@ Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const Pass
         predictBody(a, settings);
         predictBody(b, settings);
         ++applied;
-        if (eps < 0.0 && patch.size() == 1)
-        {
-            // A ramp sweep removes part of an approach, u_n' = |eps| u_n, once per visit (as a
-            // patch does). With a single approaching point, repeating would find that same point
-            // still approaching and compound the ramp into |eps|^k, at up to pairIterations
-            // impulses per resting ball and sweep. Several points go on sharing the work in depth
-            // order, as the paper's loop does.
-            break;
-        }
     }
     return {applied, false};
-}
-
-Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
-                             std::vector<ContactPoint>& scratch)
-{
-    // how many approaching points each support gave to the patch
-    thread_local std::vector<std::size_t> approaching;
-    approaching.clear();
-    if (supports.size() > 1)
-    {
-        thread_local std::vector<PatchPoint> patch;
-        patch.clear();
-        for (const Support& support : supports)
-        {
-            scratch.clear();
-            collideShapes(body.shape, body.predicted, support.body->shape, support.body->predicted, settings.threshold,
-                          scratch);
-            const std::size_t before = patch.size();
-            collectApproaching(body, *support.body, support.friction, settings, scratch, patch);
-            approaching.push_back(patch.size() - before);
-        }
-        reducePatch(body, patch);
-        if (patch.size() > 1 && patch.size() <= kMaxPatchPoints &&
-            (applyPatchImpulse(body, patch, eps, settings) || applyProjectedPatchImpulse(body, patch, eps, settings)))
-        {
-            predictBody(body, settings);
-            for (const Support& support : supports)
-            {
-                predictBody(*support.body, settings);
-            }
-            return {1, false};
-        }
-    }
-    // Each support is then resolved as a pair. Until one of them applies an impulse, nothing has
-    // moved since the patch was collected (a patch that is not applied changes no velocity), so a
-    // support that gave no approaching point would detect the same points and find none again: it
-    // is passed over. A resting box on two others that finds nothing approaching skips both.
-    Resolution all{0, true};
-    for (std::size_t s = 0; s < supports.size(); ++s)
-    {
-        const Support& support = supports[s];
-        if (all.impulses == 0 && !approaching.empty() && approaching[s] == 0)
-        {
-            continue;
-        }
-        const Resolution one = resolvePair(body, *support.body, eps, support.friction, settings, scratch);
-        all.impulses += one.impulses;
-        all.quiet = all.quiet && one.quiet;
-    }
-    return all;
 }
 
 } // namespace impulse

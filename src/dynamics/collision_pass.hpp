@@ -2,15 +2,16 @@
 #pragma once
 
 #include "collision/contact.hpp"
+#include "contact/contact_cache.hpp"
+#include "dynamics/contact_solver.hpp"
 #include "dynamics/rigid_body.hpp"
 
-#include <span>
 #include <vector>
 
 namespace impulse
 {
 
-/// What a pass needs to know to resolve pairs.
+/// What a pass needs to know about predicting bodies and resolving collisions.
 struct PassSettings
 {
     Real dt = 0.0;
@@ -46,7 +47,7 @@ Pose predictedPose(const RigidBody& body, const PassSettings& settings);
 /// to a body they share.
 void predictBody(RigidBody& body, const PassSettings& settings);
 
-/// What resolving a pair, or a body on its supports, did.
+/// What resolving a pair did.
 struct Resolution
 {
     int impulses = 0;
@@ -55,24 +56,11 @@ struct Resolution
     bool quiet = false;
 };
 
-/// GBF03 sec. 4: up to settings.pairIterations times, find the deepest approaching sample point of
-/// the pair at the predicted poses, apply one impulse (restitution eps, friction mu) and re-predict
-/// both bodies.
-Resolution resolvePair(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
-                       std::vector<ContactPoint>& scratch);
-
-/// A body another rests on, with the friction of that pair.
-struct Support
-{
-    RigidBody* body = nullptr;
-    Real friction = 0.0;
-};
-
-/// Resolves a body against everything it rests on (the contact pass, and shock propagation where
-/// the supports are frozen): its approaching points on all supports are first resolved as one patch
-/// with restitution eps, so a lintel on two stacks or a block on two blocks is held by both at once;
-/// if that patch does not stick, each support is resolved as a pair.
-Resolution resolveOnSupports(RigidBody& body, std::span<const Support> supports, Real eps, const PassSettings& settings,
-                             std::vector<ContactPoint>& scratch);
+/// GBF03 sec. 4, the collision pass: up to settings.pairIterations times, detect the pair exactly at
+/// the predicted poses, resolve what approaches there (restitution eps, friction mu) and re-predict
+/// both bodies. Several points approaching at once are given their restitution together (a box
+/// landing flat bounces flat); otherwise, or when that would add energy, the deepest alone.
+Resolution resolveCollision(RigidBody& a, RigidBody& b, Real eps, Real mu, const PassSettings& settings,
+                            ContactScratch& detection, SolverScratch& scratch);
 
 } // namespace impulse

@@ -1,0 +1,133 @@
+# SPDX-License-Identifier: MIT
+# Long runs as a user stops them: `impulse run` stopped by SIGTERM, by Ctrl-C (SIGINT) or by
+# --time-limit leaves a trajectory of whole samples that plot reads without a note, and a file cut
+# off in the middle of a row (as a killed writer leaves it) is plotted up to its last whole sample
+# with a note saying where it stops. The progress line is drawn only on a terminal.
+#
+#   cmake -DIMPULSE=<impulse executable> -DSCENES=<scenes dir> -DWORK=<scratch dir> -P interrupt_test.cmake
+cmake_minimum_required(VERSION 3.21)
+
+include("${CMAKE_CURRENT_LIST_DIR}/check_harness.cmake")
+start_checks(interrupt_test.cmake IMPULSE SCENES WORK)
+find_program(TIMEOUT timeout REQUIRED)
+
+# Checks that `csv` ends with an end of line and holds whole samples of `bodies` rows; sets `rows`.
+function(check_whole_samples csv bodies what)
+    file(READ "${csv}" content)
+    string(LENGTH "${content}" length)
+    math(EXPR last "${length} - 1")
+    string(SUBSTRING "${content}" ${last} 1 ending)
+    string(REGEX MATCHALL "\n" newlines "${content}")
+    list(LENGTH newlines lines)
+    math(EXPR rows "${lines} - 1")
+    math(EXPR remainder "${rows} % ${bodies}")
+    if(ending STREQUAL "\n" AND remainder EQUAL 0 AND rows GREATER ${bodies})
+        check_passed("${what}: ${rows} rows, whole samples of ${bodies} bodies")
+    else()
+        check_failed("${what}: ${rows} rows for ${bodies} bodies, last character \"${ending}\"")
+    endif()
+    set(rows ${rows} PARENT_SCOPE)
+    set(failures "${failures}" PARENT_SCOPE)
+endfunction()
+
+set(stack "${SCENES}/box_stack_50.json")
+foreach(signal TERM INT)
+    # a hundred simulated seconds would take minutes: the signal comes after one
+    execute_process(COMMAND "${TIMEOUT}" --preserve-status -s ${signal} 1 "${IMPULSE}" run "${stack}" --duration 100
+                            --out "${WORK}/stopped_${signal}.csv"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(signal STREQUAL "TERM")
+        set(expected 143)
+        set(name SIGTERM)
+    else()
+        set(expected 130)
+        set(name Ctrl-C)
+    endif()
+    if(rc EQUAL expected AND out MATCHES "stopped by ${name}" AND out MATCHES "whole samples up to where the run stopped")
+        check_passed("impulse run stopped by SIG${signal} exits ${expected} and says so")
+    else()
+        check_failed("impulse run stopped by SIG${signal}: exit ${rc}, output ${out}, stderr ${err}")
+    endif()
+    check_whole_samples("${WORK}/stopped_${signal}.csv" 50 "the trajectory of the run stopped by SIG${signal}")
+    run_impulse(plot "${WORK}/stopped_${signal}.csv" --scene "${stack}" --size 320x240)
+    if(run_rc EQUAL 0 AND NOT run_err MATCHES "note")
+        check_passed("plot reads the stopped run's trajectory as a whole file")
+    else()
+        check_failed("plot of the stopped run: exit ${run_rc}, stderr ${run_err}")
+    endif()
+endforeach()
+
+run_impulse(run "${stack}" --duration 100 --time-limit 0.5 --out "${WORK}/limited.csv")
+expect_success()
+if(run_out MATCHES "steps       ([0-9]+) of 100000 \\(dt 0.001 s, [0-9.]+ s simulated\\): stopped by --time-limit")
+    check_passed("--time-limit stops the run and says after how many steps")
+    set(limited_steps ${CMAKE_MATCH_1})
+else()
+    check_failed("--time-limit: ${run_out}")
+endif()
+check_whole_samples("${WORK}/limited.csv" 50 "the trajectory of the run stopped by --time-limit")
+# the first sample, then one per step, the last one the state where it stopped
+if(DEFINED limited_steps)
+    math(EXPR expected_rows "50 * (${limited_steps} + 1)")
+    if(rows EQUAL expected_rows)
+        check_passed("the limited run wrote every step up to where it stopped")
+    else()
+        check_failed("the limited run wrote ${rows} rows, expected ${expected_rows}")
+    endif()
+endif()
+
+# a file cut off in the middle of a row: read to its last whole sample, with a note
+file(READ "${WORK}/limited.csv" content)
+string(LENGTH "${content}" length)
+math(EXPR cut "${length} * 2 / 3 + 7")
+string(SUBSTRING "${content}" 0 ${cut} cut_content)
+file(WRITE "${WORK}/cut.csv" "${cut_content}")
+run_impulse(plot "${WORK}/cut.csv" --scene "${stack}" --size 320x240)
+if(run_rc EQUAL 0 AND run_err MATCHES "impulse: note: .*cut.csv: cut off at line [0-9]+ \\(.*left out\\); [0-9]+ whole samples up to t = ")
+    check_passed("plot reads a cut-off trajectory to its last whole sample and says where it stops")
+else()
+    check_failed("plot of a cut-off trajectory: exit ${run_rc}, stderr ${run_err}")
+endif()
+run_impulse(view "${WORK}/cut.csv" --scene "${stack}" --out "${WORK}/cut.html")
+if(run_rc EQUAL 0 AND run_err MATCHES "cut off at line")
+    check_passed("view reads a cut-off trajectory with the same note")
+else()
+    check_failed("view of a cut-off trajectory: exit ${run_rc}, stderr ${run_err}")
+endif()
+
+# render stopped by SIGTERM: after a whole frame, no video, exit 143
+execute_process(COMMAND "${TIMEOUT}" --preserve-status -s TERM 1 "${IMPULSE}" render "${WORK}/limited.csv" --scene "${stack}"
+                        --fps 1000 --size 160x120 --out "${WORK}/frames"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 143 AND out MATCHES "stopped     by SIGTERM after ([0-9]+) of [0-9]+ frames; no video")
+    file(GLOB frames "${WORK}/frames/frame_*.png")
+    list(LENGTH frames frame_count)
+    if(frame_count EQUAL CMAKE_MATCH_1)
+        check_passed("render stopped by SIGTERM says so and leaves its ${frame_count} frames")
+    else()
+        check_failed("render stopped after ${CMAKE_MATCH_1} frames but left ${frame_count}")
+    endif()
+else()
+    check_failed("render stopped by SIGTERM: exit ${rc}, output ${out}, stderr ${err}")
+endif()
+
+# no progress line when standard error is not a terminal (here, a pipe)
+run_impulse(run "${stack}" --duration 0.2)
+if(run_err STREQUAL "")
+    check_passed("no progress line when standard error is not a terminal")
+else()
+    check_failed("run wrote to a pipe's standard error: ${run_err}")
+endif()
+# on a terminal, a progress line (script(1) gives the run one)
+find_program(SCRIPT script)
+if(SCRIPT)
+    execute_process(COMMAND "${SCRIPT}" -qec "'${IMPULSE}' run '${stack}' --duration 0.3" /dev/null
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+    if(rc EQUAL 0 AND out MATCHES "box_stack_50.json  \\[[#.]+\\]  [0-9]+/300 steps  ETA")
+        check_passed("a progress line on a terminal")
+    else()
+        check_failed("run on a terminal: exit ${rc}, output ${out}")
+    endif()
+endif()
+
+finish_checks("interrupt")
