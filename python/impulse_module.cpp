@@ -174,6 +174,9 @@ const std::map<std::string, std::function<void(StepOptions&, const py::handle&)>
         {"push_out_speed", [](StepOptions& o, const py::handle& v) { o.pushOutSpeed = v.cast<Real>(); }},
         {"push_out_iterations", [](StepOptions& o, const py::handle& v) { o.pushOutIterations = v.cast<int>(); }},
         {"threads", [](StepOptions& o, const py::handle& v) { o.threads = v.cast<int>(); }},
+        {"sleep", [](StepOptions& o, const py::handle& v) { o.sleep = v.cast<bool>(); }},
+        {"sleep_speed", [](StepOptions& o, const py::handle& v) { o.sleepSpeed = v.cast<Real>(); }},
+        {"sleep_time", [](StepOptions& o, const py::handle& v) { o.sleepTime = v.cast<Real>(); }},
     };
     return setters;
 }
@@ -447,6 +450,7 @@ py::dict statsDict(const StepStats& s)
     d["contact_levels"] = s.contactLevels;
     d["contact_pairs"] = s.contactPairs;
     d["islands"] = s.islands;
+    d["sleeping_bodies"] = s.sleepingBodies;
     d["threads"] = s.threads;
     py::dict ms;
     ms["candidate_pairs"] = s.milliseconds.candidatePairs;
@@ -560,6 +564,9 @@ void bind(py::module_& m)
         .def_readwrite("push_out_speed", &StepOptions::pushOutSpeed)
         .def_readwrite("push_out_iterations", &StepOptions::pushOutIterations)
         .def_readwrite("threads", &StepOptions::threads)
+        .def_readwrite("sleep", &StepOptions::sleep)
+        .def_readwrite("sleep_speed", &StepOptions::sleepSpeed)
+        .def_readwrite("sleep_time", &StepOptions::sleepTime)
         .def("__repr__",
              [](const StepOptions& o)
              {
@@ -670,6 +677,9 @@ void bind(py::module_& m)
             "Handles of the dynamic bodies that have not been removed, ascending.")
         .def(
             "is_dynamic", [](const World& w, std::int64_t body) { return w.isDynamic(bodyId(body)); }, py::arg("body"))
+        .def(
+            "is_asleep", [](const World& w, std::int64_t body) { return w.isAsleep(bodyId(body)); }, py::arg("body"),
+            "Whether the body sleeps (StepOptions.sleep).")
 
         // stepping
         .def(

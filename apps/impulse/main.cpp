@@ -49,6 +49,10 @@ int main(int argc, char** argv)
                      "End the contact pass with a shock-propagation sweep: on (the default) or off")
         ->check(CLI::IsMember({"on", "off"}));
     runCommand
+        ->add_option("--sleep", run.sleep,
+                     "Let islands at rest sleep until something touches them: on or off (the default)")
+        ->check(CLI::IsMember({"on", "off"}));
+    runCommand
         ->add_option("--push-out", run.pushOut,
                      "Move overlapping bodies apart after the position update: on (the default) or off")
         ->check(CLI::IsMember({"on", "off"}));

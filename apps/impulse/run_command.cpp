@@ -77,6 +77,10 @@ int runScene(const RunOptions& options)
     {
         scene.options.pushOut = *options.pushOut == "on";
     }
+    if (options.sleep)
+    {
+        scene.options.sleep = *options.sleep == "on";
+    }
     scene.options.threads = options.threads;
     if (options.restitutionThreshold)
     {

@@ -19,6 +19,7 @@ struct RunOptions
     std::optional<double> restitutionThreshold;  ///< m/s
     std::optional<std::string> shockPropagation; ///< "on" or "off"
     std::optional<std::string> pushOut;          ///< "on" or "off"
+    std::optional<std::string> sleep;            ///< "on" or "off"
     int threads = 1;                             ///< 0: one per hardware thread
     std::optional<double> timeLimit;             ///< wall-clock seconds; stop at the next sample after it
     bool progress = true;                        ///< the progress line, when standard error is a terminal

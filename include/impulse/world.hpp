@@ -86,6 +86,15 @@ struct StepOptions
     /// Worker threads for the narrow phase and for islands of touching bodies; 0 means one per
     /// hardware thread. Trajectories are bit-identical whatever the number.
     int threads = 1;
+    /// Let islands at rest sleep: a body whose points all move slower than sleepSpeed for sleepTime
+    /// rests, and once every body of its island does, the island is put to sleep: velocities zeroed,
+    /// left out of every pass (its contacts are not listed by World::contacts()) until a candidate
+    /// pair joins it to an awake body, or the API touches one of its bodies (setState, a force, an
+    /// impulse, a filter, new mass properties, a removal). Off by default: a sleeping island does not
+    /// feel the slow motions it would otherwise have.
+    bool sleep = false;
+    Real sleepSpeed = 0.01; ///< m/s; the fastest point of a body at rest: |v| + |w| r
+    Real sleepTime = 0.5;   ///< s a body must rest before its island may sleep
     /// Verification mode for tests: every use of the contact layer's cached points also runs the exact
     /// narrow phase, and a point missed or a separation off by more than the pair's motion since
     /// capture allows makes step() throw std::logic_error. Slow; it changes no result.
@@ -124,6 +133,7 @@ struct StepStats
     int coldRestarts = 0;      ///< islands solved again from no load (a warm start gained energy)
     int shockIterations = 0;   ///< sweeps of shock propagation, summed over levels
     int islands = 0;           ///< groups of dynamic bodies connected by candidate pairs, solved independently
+    int sleepingBodies = 0;    ///< bodies asleep at the end of the step (StepOptions::sleep)
     int threads = 1;           ///< worker threads the step used
     /// Wall time of each stage of the step, milliseconds (measured, so not deterministic).
     struct StageTimes
@@ -233,6 +243,8 @@ class World
     /// Bodies ever created, removed ones included: valid handles are numbered below it.
     std::uint32_t bodyCount() const;
     bool isDynamic(BodyId body) const;
+    /// Whether the body sleeps (StepOptions::sleep): at rest and left out of the step until woken.
+    bool isAsleep(BodyId body) const;
     BodyState state(BodyId body) const;
     Real mass(BodyId body) const;             ///< infinite for static bodies
     Vec3 principalInertia(BodyId body) const; ///< principal moments, kg m^2 (zero for static bodies)

@@ -352,7 +352,7 @@ void readSolver(const Field& field, StepOptions& options)
     field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
                          "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold",
                          "shock_propagation", "push_out", "push_out_allowance", "push_out_speed",
-                         "push_out_iterations"});
+                         "push_out_iterations", "sleep", "sleep_speed", "sleep_time"});
     if (field.has("scheme"))
     {
         const std::string scheme = field.at("scheme").text();
@@ -388,6 +388,18 @@ void readSolver(const Field& field, StepOptions& options)
     if (field.has("push_out_iterations"))
     {
         options.pushOutIterations = field.at("push_out_iterations").count(0);
+    }
+    if (field.has("sleep"))
+    {
+        options.sleep = field.at("sleep").boolean();
+    }
+    if (field.has("sleep_speed"))
+    {
+        options.sleepSpeed = field.at("sleep_speed").nonNegative();
+    }
+    if (field.has("sleep_time"))
+    {
+        options.sleepTime = field.at("sleep_time").nonNegative();
     }
     if (field.has("restitution_threshold"))
     {

@@ -338,14 +338,30 @@ constexpr std::size_t kPointNumbers = 21;
 
 std::vector<double> ContactCache::save() const
 {
-    std::vector<double> saved = {kSaveVersion, static_cast<double>(m_entries.size())};
+    // the listed entries and the parked ones, merged in pair order
+    std::vector<const ContactEntry*> all;
+    all.reserve(m_entries.size() + m_parked.size());
+    auto parked = m_parked.begin();
     for (const ContactEntry& entry : m_entries)
     {
+        for (; parked != m_parked.end() && parked->first < key(entry.a, entry.b); ++parked)
+        {
+            all.push_back(&parked->second);
+        }
+        all.push_back(&entry);
+    }
+    for (; parked != m_parked.end(); ++parked)
+    {
+        all.push_back(&parked->second);
+    }
+    std::vector<double> saved = {kSaveVersion, static_cast<double>(all.size())};
+    for (const ContactEntry* entry : all)
+    {
         saved.insert(saved.end(),
-                     {static_cast<double>(entry.a), static_cast<double>(entry.b), entry.captured ? 1.0 : 0.0,
-                      entry.offset.x(), entry.offset.y(), entry.offset.z(), entry.turn.w(), entry.turn.x(),
-                      entry.turn.y(), entry.turn.z(), entry.reach, static_cast<double>(entry.points.size())});
-        for (const CachedPoint& point : entry.points)
+                     {static_cast<double>(entry->a), static_cast<double>(entry->b), entry->captured ? 1.0 : 0.0,
+                      entry->offset.x(), entry->offset.y(), entry->offset.z(), entry->turn.w(), entry->turn.x(),
+                      entry->turn.y(), entry->turn.z(), entry->reach, static_cast<double>(entry->points.size())});
+        for (const CachedPoint& point : entry->points)
         {
             saved.insert(saved.end(), {point.anchorA.x(),
                                        point.anchorA.y(),
@@ -458,6 +474,7 @@ void ContactCache::restore(const std::vector<double>& saved, std::size_t bodies)
     }
     m_entries.swap(entries);
     m_previous.clear();
+    m_parked.clear(); // restored as listed: a restored world wakes, and follow() keeps what it lists
 }
 
 ContactCache::Counters ContactCache::takeCounters()

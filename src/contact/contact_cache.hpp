@@ -22,9 +22,11 @@
 
 #include <impulse/shape.hpp>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -100,7 +102,16 @@ class ContactCache
     /// Follows a new pair list (sorted by (a, b)): entries of pairs still listed keep their points
     /// and loads, new pairs start empty, the rest are dropped. `exactPair(a, b)` tells which pairs
     /// are detected exactly at every use.
-    template <class Pairs, class ExactPair> void follow(const Pairs& pairs, const ExactPair& exactPair);
+    template <class Pairs, class ExactPair> void follow(const Pairs& pairs, const ExactPair& exactPair)
+    {
+        follow(pairs, exactPair, [](std::uint32_t, std::uint32_t) { return false; });
+    }
+    /// The same, but an entry whose pair is no longer listed and for which `parkedPair(a, b)` holds
+    /// (its bodies sleep) is parked instead of dropped: kept aside with its points and loads, and
+    /// taken back when the pair is listed again, so that a woken island starts from the loads it
+    /// slept with. Parked entries whose pair no longer satisfies `parkedPair` are dropped.
+    template <class Pairs, class ExactPair, class ParkedPair>
+    void follow(const Pairs& pairs, const ExactPair& exactPair, const ParkedPair& parkedPair);
 
     std::size_t size() const { return m_entries.size(); }
     ContactEntry& entry(std::size_t k) { return m_entries[k]; }
@@ -159,8 +170,11 @@ class ContactCache
     void detect(const PlacedShape& a, const PlacedShape& b, Real threshold, std::vector<ContactPoint>& out,
                 ContactScratch& scratch);
 
+    static std::uint64_t key(std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; }
+
     std::vector<ContactEntry> m_entries;
     std::vector<ContactEntry> m_previous;
+    std::map<std::uint64_t, ContactEntry> m_parked; ///< entries of sleeping pairs, by key(a, b)
     bool m_verify = false;
     std::atomic<int> m_violations{0};
     std::mutex m_violationMutex;
@@ -169,24 +183,47 @@ class ContactCache
     std::atomic<int> m_captures{0};
 };
 
-template <class Pairs, class ExactPair> void ContactCache::follow(const Pairs& pairs, const ExactPair& exactPair)
+template <class Pairs, class ExactPair, class ParkedPair>
+void ContactCache::follow(const Pairs& pairs, const ExactPair& exactPair, const ParkedPair& parkedPair)
 {
+    // parked entries whose bodies are awake again come back below if their pair is listed, else go
+    for (auto it = m_parked.begin(); it != m_parked.end();)
+    {
+        const auto listed = std::lower_bound(pairs.begin(), pairs.end(), it->first,
+                                             [](const auto& pair, std::uint64_t wanted)
+                                             { return key(pair.a, pair.b) < wanted; });
+        const bool keep = parkedPair(it->second.a, it->second.b) ||
+                          (listed != pairs.end() && key(listed->a, listed->b) == it->first);
+        it = keep ? std::next(it) : m_parked.erase(it);
+    }
     // both lists are sorted by (a, b): one merge
     m_previous.swap(m_entries);
     m_entries.resize(pairs.size());
     std::size_t old = 0;
+    const auto leave = [&](ContactEntry& entry)
+    {
+        if (parkedPair(entry.a, entry.b))
+        {
+            m_parked[key(entry.a, entry.b)] = std::move(entry);
+        }
+    };
     for (std::size_t k = 0; k < pairs.size(); ++k)
     {
-        const auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
         const std::uint64_t wanted = key(pairs[k].a, pairs[k].b);
         while (old < m_previous.size() && key(m_previous[old].a, m_previous[old].b) < wanted)
         {
-            ++old;
+            leave(m_previous[old++]);
         }
         ContactEntry& entry = m_entries[k];
+        const auto parked = m_parked.empty() ? m_parked.end() : m_parked.find(wanted);
         if (old < m_previous.size() && key(m_previous[old].a, m_previous[old].b) == wanted)
         {
-            entry = std::move(m_previous[old]);
+            entry = std::move(m_previous[old++]);
+        }
+        else if (parked != m_parked.end())
+        {
+            entry = std::move(parked->second);
+            m_parked.erase(parked);
         }
         else
         {
@@ -196,6 +233,10 @@ template <class Pairs, class ExactPair> void ContactCache::follow(const Pairs& p
         entry.a = pairs[k].a;
         entry.b = pairs[k].b;
         entry.exact = exactPair(pairs[k].a, pairs[k].b);
+    }
+    for (; old < m_previous.size(); ++old)
+    {
+        leave(m_previous[old]);
     }
 }
 

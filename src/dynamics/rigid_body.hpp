@@ -60,6 +60,11 @@ struct RigidBody
     std::uint32_t collisionMask = 0xffffffffU;
     bool removed = false; ///< taken out of the world: static, in no pair, its index never reused
 
+    // sleeping (StepOptions::sleep): a body asleep is at rest and out of the step until woken
+    bool asleep = false;
+    Real restingTime = 0.0;       ///< s it has moved slower than StepOptions::sleepSpeed
+    std::uint32_t sleepGroup = 0; ///< the island it fell asleep with (its lowest body index): woken together
+
     /// Static, or frozen by shock propagation: impulses do not move it.
     bool immovable() const { return !dynamic || frozen; }
 

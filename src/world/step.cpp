@@ -183,6 +183,10 @@ void WorldImpl::step(const StepOptions& options)
     stats.threads = threads;
     scratch.resize(static_cast<std::size_t>(threads));
     contacts.setVerification(options.verifyContacts);
+    if (!options.sleep)
+    {
+        wakeAll();
+    }
     if (options.scheme == Scheme::Traditional)
     {
         stepTraditional(options);
@@ -190,6 +194,10 @@ void WorldImpl::step(const StepOptions& options)
     else
     {
         stepGuendelman(options);
+    }
+    if (options.sleep)
+    {
+        updateSleep(options);
     }
     clearLoads();
     finishStep(options);
@@ -236,6 +244,67 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
         pushOut(options);
     }
     clock.lap(stats.milliseconds.pushOut);
+}
+
+bool WorldImpl::wakeTouched()
+{
+    bool woke = false;
+    for (const BodyPair& pair : pairs)
+    {
+        if (bodies[pair.a].asleep != bodies[pair.b].asleep)
+        {
+            wake(bodies[pair.a].asleep ? pair.a : pair.b);
+            woke = true;
+        }
+    }
+    return woke;
+}
+
+void WorldImpl::updateSleep(const StepOptions& options)
+{
+    // a body rests while its fastest point is slower than sleepSpeed; an island sleeps once every
+    // body of it has rested sleepTime, a body in no island once it has
+    for (RigidBody& body : bodies)
+    {
+        if (body.dynamic && !body.asleep)
+        {
+            const Real speed = body.linearVelocity.norm() + body.angularVelocity.norm() * body.boundingRadius;
+            body.restingTime = speed < options.sleepSpeed ? body.restingTime + options.dt : 0.0;
+        }
+    }
+    const auto fallAsleep = [&](std::uint32_t i, std::uint32_t group)
+    {
+        RigidBody& body = bodies[i];
+        body.asleep = true;
+        body.sleepGroup = group;
+        body.linearVelocity.setZero();
+        body.angularMomentum.setZero();
+        body.angularVelocity.setZero();
+    };
+    const auto rested = [&](std::uint32_t i) { return bodies[i].restingTime >= options.sleepTime; };
+    std::vector<std::uint8_t> inIsland(bodies.size(), 0);
+    for (const Island& island : islands)
+    {
+        for (const std::uint32_t i : island.bodies)
+        {
+            inIsland[i] = 1;
+        }
+        if (std::all_of(island.bodies.begin(), island.bodies.end(), rested))
+        {
+            for (const std::uint32_t i : island.bodies)
+            {
+                fallAsleep(i, island.bodies.front());
+            }
+        }
+    }
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+    {
+        if (bodies[i].dynamic && !bodies[i].asleep && !inIsland[i] && rested(i))
+        {
+            fallAsleep(i, i);
+        }
+        stats.sleepingBodies += bodies[i].asleep ? 1 : 0;
+    }
 }
 
 bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
@@ -321,26 +390,37 @@ Real WorldImpl::pairReach(std::uint32_t k, const StepOptions& options) const
 
 void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSettings& settings)
 {
-    predictAll(settings);
     broadBodies.resize(bodies.size());
     broadMargins.resize(bodies.size());
-    parallelForEach(threads, bodies.size(),
-                    [&](std::size_t i)
-                    {
-                        const RigidBody& body = bodies[i];
-                        broadMargins[i] = std::max(broadMargins[i], ownMargin(body, options));
-                        broadBodies[i] = {&body.shape,     body.pose(),  body.predicted, body.boundingRadius,
-                                          broadMargins[i], body.dynamic, !body.removed};
-                    });
-    broadPhase.findPairs(broadBodies, threads, pairs);
-    dropFilteredPairs();
+    // a sleeping body is paired like a static one, so two sleeping bodies make no pair, and a pair
+    // with an awake body wakes it (and the pairs are found again with it awake)
+    do
+    {
+        predictAll(settings);
+        parallelForEach(threads, bodies.size(),
+                        [&](std::size_t i)
+                        {
+                            const RigidBody& body = bodies[i];
+                            broadMargins[i] = std::max(broadMargins[i], ownMargin(body, options));
+                            broadBodies[i] = {&body.shape,         body.pose(),     body.predicted,
+                                              body.boundingRadius, broadMargins[i], body.dynamic && !body.asleep,
+                                              !body.removed};
+                        });
+        broadPhase.findPairs(broadBodies, threads, pairs);
+        dropFilteredPairs();
+    } while (wakeTouched());
     pairCoefficients.clear();
     for (const BodyPair& pair : pairs)
     {
         pairCoefficients.push_back(coefficients(bodies[pair.a].material, bodies[pair.b].material));
     }
-    contacts.follow(pairs, [&](std::uint32_t a, std::uint32_t b)
-                    { return detectedExactly(bodies[a].shape) || detectedExactly(bodies[b].shape); });
+    // a sleeping island's entries are parked, so that it wakes with the loads it slept with
+    const auto resting = [&](std::uint32_t i) { return bodies[i].asleep || (!bodies[i].dynamic && !bodies[i].removed); };
+    contacts.follow(
+        pairs,
+        [&](std::uint32_t a, std::uint32_t b)
+        { return detectedExactly(bodies[a].shape) || detectedExactly(bodies[b].shape); },
+        [&](std::uint32_t a, std::uint32_t b) { return (bodies[a].asleep || bodies[b].asleep) && resting(a) && resting(b); });
     stats.candidatePairs = static_cast<int>(pairs.size());
 }
 
@@ -669,7 +749,7 @@ void WorldImpl::updateVelocities(const StepOptions& options)
 {
     for (RigidBody& body : bodies)
     {
-        if (body.dynamic)
+        if (body.dynamic && !body.asleep)
         {
             body.linearVelocity += options.dt * body.acceleration; // gravity and the applied force
             if (!body.torque.isZero(0.0))
@@ -969,7 +1049,7 @@ void WorldImpl::updatePositions(const StepOptions& options)
                     [&](std::size_t i)
                     {
                         RigidBody& body = bodies[i];
-                        if (!body.dynamic)
+                        if (!body.dynamic || body.asleep)
                         {
                             return;
                         }

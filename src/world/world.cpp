@@ -280,6 +280,10 @@ BodyId World::createBody(const BodyDef& def)
     body.acceleration = body.dynamic ? m_impl->def.gravity : Vec3::Zero();
     updateDerivedQuantities(body);
     body.predicted = body.pose();
+    if (!body.dynamic)
+    {
+        m_impl->wakeAll(); // the broad phase pairs no static body with a sleeping one
+    }
     m_impl->bodies.push_back(body);
     return {static_cast<std::uint32_t>(m_impl->bodies.size() - 1)};
 }
@@ -301,11 +305,13 @@ void World::setState(BodyId id, const Vec3& position, const Quat& orientation, c
     body.angularMomentum = momentumOf(body, angularVelocity);
     updateDerivedQuantities(body);
     body.predicted = body.pose();
+    m_impl->wake(id.index);
 }
 
 void World::removeBody(BodyId id)
 {
     RigidBody& body = lookUp(*m_impl, id);
+    m_impl->wake(id.index); // what rested on it must feel it gone
     // a tombstone: static and at rest, so that no stage moves it or counts it, and left out of the
     // broad phase, so that nothing pairs with it
     body.removed = true;
@@ -333,6 +339,7 @@ bool World::contains(BodyId id) const
 void World::applyForce(BodyId id, const Vec3& force)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    m_impl->wake(id.index);
     require(finite(force), "force", "must be finite, got " + vector(force));
     body.force += force;
 }
@@ -340,6 +347,7 @@ void World::applyForce(BodyId id, const Vec3& force)
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    m_impl->wake(id.index);
     require(finite(force), "force", "must be finite, got " + vector(force));
     require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
     body.force += force;
@@ -349,6 +357,7 @@ void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint)
 void World::applyTorque(BodyId id, const Vec3& torque)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "torques do not move it");
+    m_impl->wake(id.index);
     require(finite(torque), "torque", "must be finite, got " + vector(torque));
     body.torque += torque;
 }
@@ -356,6 +365,7 @@ void World::applyTorque(BodyId id, const Vec3& torque)
 void World::applyImpulse(BodyId id, const Vec3& impulse)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    m_impl->wake(id.index);
     require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
     body.linearVelocity += body.invMass * impulse;
 }
@@ -363,6 +373,7 @@ void World::applyImpulse(BodyId id, const Vec3& impulse)
 void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    m_impl->wake(id.index);
     require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
     require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
     impulse::applyImpulse(body, impulse, Vec3(worldPoint - body.position));
@@ -371,6 +382,7 @@ void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
 void World::applyAngularImpulse(BodyId id, const Vec3& angularImpulse)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    m_impl->wake(id.index);
     require(finite(angularImpulse), "angular_impulse", "must be finite, got " + vector(angularImpulse));
     body.angularMomentum += angularImpulse;
     body.angularVelocity = body.invInertiaWorld * body.angularMomentum;
@@ -389,6 +401,7 @@ Vec3 World::appliedTorque(BodyId id) const
 void World::setCollisionFilter(BodyId id, const CollisionFilter& filter)
 {
     RigidBody& body = lookUp(*m_impl, id);
+    m_impl->wake(id.index);
     body.collisionGroup = filter.group;
     body.collisionMask = filter.mask;
     if (filter != CollisionFilter{})
@@ -408,6 +421,8 @@ void World::setCollisionEnabled(BodyId a, BodyId b, bool enabled)
     lookUp(*m_impl, a, "a");
     lookUp(*m_impl, b, "b");
     require(a.index != b.index, "b", "is the same body as a (a body never collides with itself)");
+    m_impl->wake(a.index);
+    m_impl->wake(b.index);
     const auto key = std::minmax(a.index, b.index);
     if (enabled)
     {
@@ -450,10 +465,44 @@ void WorldImpl::beginLoads()
 {
     for (RigidBody& body : bodies)
     {
-        if (body.dynamic)
+        if (body.dynamic && body.asleep)
+        {
+            body.acceleration.setZero(); // a force would have woken it
+        }
+        else if (body.dynamic)
         {
             // exactly gravity when no force is applied, so that such steps are unchanged bit for bit
             body.acceleration = body.force.isZero(0.0) ? def.gravity : Vec3(def.gravity + body.invMass * body.force);
+        }
+    }
+}
+
+void WorldImpl::wake(std::uint32_t index)
+{
+    if (!bodies[index].asleep)
+    {
+        return;
+    }
+    const std::uint32_t group = bodies[index].sleepGroup;
+    for (RigidBody& body : bodies)
+    {
+        if (body.asleep && body.sleepGroup == group)
+        {
+            body.asleep = false;
+            body.restingTime = 0.0;
+            body.acceleration = body.force.isZero(0.0) ? def.gravity : Vec3(def.gravity + body.invMass * body.force);
+        }
+    }
+}
+
+void WorldImpl::wakeAll()
+{
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+    {
+        if (bodies[i].asleep)
+        {
+            bodies[i].sleepGroup = 0; // one group: the first wake takes everyone
+            wake(i);
         }
     }
 }
@@ -471,6 +520,7 @@ void World::setMassProperties(BodyId id, Real mass, const Mat3& inertia)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "it has no mass properties to set");
     require(std::isfinite(mass) && mass > 0.0, "mass", "must be a positive finite number, got " + number(mass));
+    m_impl->wake(id.index);
     const PrincipalFrame frame = principalFrame(inertia);
     const Vec3 angularVelocity = body.angularVelocity;
     body.mass = mass;
@@ -545,6 +595,7 @@ void World::restore(const WorldSnapshot& snapshot)
     }
     m_impl->contacts.restore(snapshot.contacts, bodies.size()); // throws, changing nothing, when it does not fit
     bodies = std::move(restored);
+    m_impl->wakeAll(); // a snapshot does not say who slept
     m_impl->time = snapshot.time;
 }
 
@@ -579,6 +630,14 @@ void World::step(const StepOptions& options)
     {
         throw std::invalid_argument("threads: must be 0 (one per hardware thread) or a positive count");
     }
+    if (!(options.sleepSpeed >= 0.0) || !std::isfinite(options.sleepSpeed))
+    {
+        throw std::invalid_argument("sleep_speed: must be a non-negative finite speed");
+    }
+    if (!(options.sleepTime >= 0.0) || !std::isfinite(options.sleepTime))
+    {
+        throw std::invalid_argument("sleep_time: must be a non-negative finite time");
+    }
     m_impl->step(options);
 }
 
@@ -590,6 +649,11 @@ std::uint32_t World::bodyCount() const
 bool World::isDynamic(BodyId body) const
 {
     return lookUp(*m_impl, body).dynamic;
+}
+
+bool World::isAsleep(BodyId body) const
+{
+    return lookUp(*m_impl, body).asleep;
 }
 
 BodyState World::state(BodyId id) const

@@ -132,6 +132,9 @@ class WorldImpl
     void beginLoads();
     /// Clears the applied forces and torques once the step has used them.
     void clearLoads();
+    /// Wakes `body` and every body that fell asleep with it.
+    void wake(std::uint32_t body);
+    void wakeAll();
 
   private:
     // the two orders of the step (step.cpp), each a list of the stages below
@@ -154,6 +157,10 @@ class WorldImpl
     void updatePositions(const StepOptions& options);
     void pushOut(const StepOptions& options);
     void finishStep(const StepOptions& options);
+    /// Wakes the sleeping bodies a candidate pair joins to an awake body; whether any woke.
+    bool wakeTouched();
+    /// Counts how long each body has rested and puts islands that rested long enough to sleep.
+    void updateSleep(const StepOptions& options);
 
     void predictAll(const PassSettings& settings);
     PlacedShape placed(std::uint32_t body, const Pose& pose) const;
