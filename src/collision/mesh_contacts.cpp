@@ -41,6 +41,8 @@ struct Target
     virtual Real coarseLowerBound(const Vec3& local) const = 0;
     /// How far above phi a value distance() returns as not exact may lie.
     virtual Real gridError() const { return 0.0; }
+    /// A segment that leaves a convex target never enters it again.
+    virtual bool convex() const { return true; }
 
     Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
 };
@@ -63,6 +65,7 @@ struct MeshTarget final : Target
     }
     Real coarseLowerBound(const Vec3& local) const override { return mesh.coarseLowerBound(local); }
     Real gridError() const override { return mesh.gridError(); }
+    bool convex() const override { return false; }
 };
 
 // A solid with an analytic signed distance: exact everywhere, so phi is its own lower bound.
@@ -347,9 +350,12 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
         const Vec3& a = vertices[edge[0]];
         const Vec3& b = vertices[edge[1]];
         Real reach = bounds.value[edge[0]] + bounds.value[edge[1]];
-        if (reach == -kInfinity)
+        if (reach == -kInfinity && target.convex())
         {
-            continue; // an end is inside, a sample point already
+            // an end is inside, a sample point already, and the edge cannot pass through again; an
+            // edge from inside a mesh can leave it and pass through another part of it, as deep as
+            // it likes however shallow its end (crossings() gives only whole passages)
+            continue;
         }
         if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
         {

@@ -377,8 +377,14 @@ void predictBody(RigidBody& body, const PassSettings& settings)
 {
     if (body.dynamic)
     {
-        body.predicted = poseAtFraction(body, settings, 1.0);
-        ++body.motion;
+        const Pose next = poseAtFraction(body, settings, 1.0);
+        // counted only when it moves, so that what was found at this pose still holds
+        if (next.position != body.predicted.position ||
+            next.orientation.coeffs() != body.predicted.orientation.coeffs())
+        {
+            body.predicted = next;
+            ++body.motion;
+        }
     }
 }
 

@@ -42,7 +42,7 @@ Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, co
 /// Pose of the body at the end of the step under the velocities this pass uses.
 Pose predictedPose(const RigidBody& body, const PassSettings& settings);
 
-/// Places body.predicted at predictedPose and counts the move in body.motion. Static bodies keep
+/// Places body.predicted at predictedPose and counts the move in body.motion (when it moved). Static bodies keep
 /// theirs (their pose, set when they are created), so that passes on different threads never write
 /// to a body they share.
 void predictBody(RigidBody& body, const PassSettings& settings);

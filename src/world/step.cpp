@@ -214,16 +214,22 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     buildIslands();
     refreshContacts(options, 0.0);
     clock.lap(stats.milliseconds.candidatePairs);
-    solveCollisions(options, collision);
+    solveCollisions(options, collision, false);
     // a body an impulse sent beyond its box may reach bodies it was not paired with: find its pairs
     // again with room for its new speed, and give the new pairs their collision pass
     for (int again = 0; again < kEscapedBoxPasses && widenEscapedBoxes(options); ++again)
     {
+        const std::vector<BodyPair> before = pairs;
         findCandidatePairs(options, collision);
+        keepQuietStamps(before);
+        ++stats.broadPhaseRepeats;
         buildIslands();
         refreshContacts(options, 0.0);
-        solveCollisions(options, collision);
-        ++stats.broadPhaseRepeats;
+        if (std::find(freshPairs.begin(), freshPairs.end(), 1) == freshPairs.end())
+        {
+            break; // no new pair: nothing new to resolve, and no body sped up further
+        }
+        solveCollisions(options, collision, true);
     }
     clock.lap(stats.milliseconds.collisionPass);
     buildContactGraph(options);
@@ -307,6 +313,29 @@ void WorldImpl::updateSleep(const StepOptions& options)
     }
 }
 
+void WorldImpl::keepQuietStamps(const std::vector<BodyPair>& before)
+{
+    // both lists sorted by (a, b): each pair still listed keeps its stamp, a new one has none and is
+    // marked fresh
+    const auto key = [](const BodyPair& pair) { return (std::uint64_t{pair.a} << 32) | pair.b; };
+    std::vector<QuietStamp> kept(pairs.size());
+    freshPairs.assign(pairs.size(), 1);
+    std::size_t old = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+    {
+        while (old < before.size() && key(before[old]) < key(pairs[k]))
+        {
+            ++old;
+        }
+        if (old < before.size() && key(before[old]) == key(pairs[k]) && old < quietPairs.size())
+        {
+            kept[k] = quietPairs[old];
+            freshPairs[k] = 0;
+        }
+    }
+    quietPairs.swap(kept);
+}
+
 bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
 {
     // where a body's poses and its own margin at its new velocity no longer fit in its box
@@ -342,7 +371,7 @@ void WorldImpl::stepTraditional(const StepOptions& options)
     buildIslands();
     refreshContacts(options, 0.0);
     assignSingleLevel();
-    solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0));
+    solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0), false);
     solveContacts(options, atCurrentPoseSettings(options, def.gravity, options.contactThickness));
     storeContactResults();
 }
@@ -508,11 +537,15 @@ void WorldImpl::buildIslands()
     stats.islands = static_cast<int>(count);
 }
 
-void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& settings)
+void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& settings, bool onlyNew)
 {
     predictAll(settings);
-    // stamps of earlier passes (and of pairs that had other indices in earlier steps) never hold
-    ++pass;
+    // stamps of earlier passes (and of pairs that had other indices in earlier steps) never hold; a
+    // run again after widening goes on with the stamps of the run before (keepQuietStamps)
+    if (!onlyNew)
+    {
+        ++pass;
+    }
     quietPairs.resize(pairs.size());
     std::vector<int> applied(islands.size(), 0);
     std::vector<int> sweeps(islands.size(), 0);
@@ -522,8 +555,8 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
                     // each island sweeps until a sweep applies nothing to it, or the cap
                     for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
                     {
-                        const int impulses =
-                            sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], options, settings);
+                        const int impulses = sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)],
+                                                        options, settings, onlyNew);
                         applied[i] += impulses;
                         ++sweeps[i];
                         if (impulses == 0)
@@ -540,12 +573,17 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
 }
 
 int WorldImpl::sweepPairs(const Island& island, ThreadScratch& local, const StepOptions& options,
-                          const PassSettings& settings)
+                          const PassSettings& settings, bool onlyNew)
 {
+    // Run again after boxes were widened, the pass visits only the pairs that are new: the rest of the
+    // island had its sweeps.
     int applied = 0;
     for (const std::uint32_t k : island.pairs)
     {
-        applied += resolveUnlessQuiet(k, local, options, settings);
+        if (!onlyNew || freshPairs[k] != 0)
+        {
+            applied += resolveUnlessQuiet(k, local, options, settings);
+        }
     }
     return applied;
 }

@@ -106,6 +106,7 @@ class WorldImpl
     BroadPhase broadPhase;
     std::vector<BroadPhaseBody> broadBodies; ///< per body: what the broad phase sees
     std::vector<Real> broadMargins;          ///< per body: how far its box is grown this step
+    std::vector<std::uint8_t> freshPairs;    ///< parallel to pairs: found since the last collision pass
     std::vector<Island> islands;
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
@@ -146,8 +147,12 @@ class WorldImpl
     /// After the collision pass: grows the margin of every body whose new velocity takes it beyond its
     /// box; whether any did.
     bool widenEscapedBoxes(const StepOptions& options);
+    /// After the pairs were found again: the collision pass's quiet stamps follow their pairs.
+    void keepQuietStamps(const std::vector<BodyPair>& before);
     void refreshContacts(const StepOptions& options, Real extra);
-    void solveCollisions(const StepOptions& options, const PassSettings& settings);
+    /// The collision pass over every island's pairs, or with `onlyNew` over the pairs found since the
+    /// last run (after boxes were widened).
+    void solveCollisions(const StepOptions& options, const PassSettings& settings, bool onlyNew);
     void buildContactGraph(const StepOptions& options);
     void assignSingleLevel();
     void updateVelocities(const StepOptions& options);
@@ -167,7 +172,7 @@ class WorldImpl
     /// How far pair k's points may move relative to each other before its entry is captured again.
     Real pairReach(std::uint32_t k, const StepOptions& options) const;
     int sweepPairs(const Island& island, ThreadScratch& scratch, const StepOptions& options,
-                   const PassSettings& settings);
+                   const PassSettings& settings, bool onlyNew);
     /// resolveCollision on pair k, unless it was found quiet at these very poses or its cached points
     /// show nothing that can collide.
     int resolveUnlessQuiet(std::uint32_t k, ThreadScratch& scratch, const StepOptions& options,

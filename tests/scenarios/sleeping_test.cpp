@@ -99,10 +99,12 @@ TEST(Sleeping, ABallThrownAtASleepingPyramidMovesItAsItMovesTheAwakeOne)
     EXPECT_FALSE(sleeping.world.isAsleep(top));
     EXPECT_GT((sleeping.world.state(top).position - topStart).norm(), 0.2);
     // and as the awake pyramid did: the woken pyramid starts from the loads it fell asleep with, which
-    // differ from the awake one's only by the contact solve's resolution (about 3e-5 m apart at the
-    // end; started from no loads instead, the two runs end some 3 cm apart)
-    EXPECT_LT(ballGap, 1e-4);
-    EXPECT_LT(bodyGap, 1e-4);
+    // differ from the awake one's only by the contact solve's resolution. The strike and the slide
+    // that follows amplify that difference (the runs end 0.03 to 0.3 mm apart as the solver's details
+    // change); started from no loads instead, as a wake that lost its contacts would, they end some
+    // 3 cm apart. A millimetre tells the two apart with room on both sides.
+    EXPECT_LT(ballGap, 1e-3);
+    EXPECT_LT(bodyGap, 1e-3);
 }
 
 TEST(Sleeping, AnImpulseWakesABodyAndItsIslandButNotAnother)
