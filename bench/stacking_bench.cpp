@@ -5,7 +5,7 @@
 //
 // Default scenes: box_stack_50 and pyramid. Each scene is stepped N times (default 2000) with each
 // setting; the figures are the median and the 10th-90th percentile spread of the wall time of a
-// step, after a warm-up of N/10 steps, plus the bodies, contact pairs and impulses per step, and the
+// step, after a warm-up of N/10 steps, plus the bodies, candidate pairs and contact rows per step, and the
 // final state hash (equal runs give equal hashes).
 #include <impulse/io/scene.hpp>
 
@@ -25,7 +25,7 @@ struct Figures
     double p10 = 0.0;
     double p90 = 0.0;
     double pairs = 0.0;
-    double impulses = 0.0;
+    double rows = 0.0;
     unsigned long long hash = 0;
     std::size_t bodies = 0;
 };
@@ -38,7 +38,7 @@ Figures measure(const std::string& path, bool shock, int steps)
     std::vector<double> times;
     times.reserve(static_cast<std::size_t>(steps));
     double pairs = 0.0;
-    double impulses = 0.0;
+    double rows = 0.0;
     for (int k = 0; k < warmUp + steps; ++k)
     {
         const auto start = std::chrono::steady_clock::now();
@@ -49,19 +49,14 @@ Figures measure(const std::string& path, bool shock, int steps)
             times.push_back(ms);
             const impulse::StepStats& stats = scene.world.lastStepStats();
             pairs += stats.candidatePairs;
-            impulses += stats.contactRows;
+            rows += stats.contactRows;
         }
     }
     std::sort(times.begin(), times.end());
     const auto at = [&](double q)
     { return times[static_cast<std::size_t>(q * static_cast<double>(times.size() - 1))]; };
-    return {at(0.5),
-            at(0.1),
-            at(0.9),
-            pairs / steps,
-            impulses / steps,
-            scene.world.stateHash(),
-            scene.dynamicBodies.size()};
+    return {
+        at(0.5), at(0.1), at(0.9), pairs / steps, rows / steps, scene.world.stateHash(), scene.dynamicBodies.size()};
 }
 
 } // namespace
@@ -93,7 +88,7 @@ int main(int argc, char** argv)
                   std::string(IMPULSE_SCENES_DIR) + "/pyramid.json"};
     }
     std::printf("%-16s %6s %6s %10s %18s %8s %10s  %s\n", "scene", "bodies", "shock", "ms/step", "p10-p90", "pairs",
-                "impulses", "state hash");
+                "rows", "state hash");
     for (const std::string& path : scenes)
     {
         const std::string name = path.substr(path.find_last_of('/') + 1);
@@ -103,7 +98,7 @@ int main(int argc, char** argv)
             {
                 const Figures f = measure(path, shock, steps);
                 std::printf("%-16s %6zu %6s %10.3f %8.3f-%-9.3f %8.1f %10.1f  %016llx\n", name.c_str(), f.bodies,
-                            shock ? "on" : "off", f.median, f.p10, f.p90, f.pairs, f.impulses, f.hash);
+                            shock ? "on" : "off", f.median, f.p10, f.p90, f.pairs, f.rows, f.hash);
             }
             catch (const impulse::io::SceneError& error)
             {

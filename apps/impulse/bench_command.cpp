@@ -100,7 +100,8 @@ struct Result
     int threads = 0; ///< the most worker threads a measured step used
     double contacts = 0.0;
     double pairs = 0.0;
-    double impulses = 0.0;
+    double collisionImpulses = 0.0;
+    double contactRows = 0.0;
     double islands = 0.0;
     double median = 0.0;
     double p10 = 0.0;
@@ -171,7 +172,8 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
     times.reserve(static_cast<std::size_t>(std::min(steps, 10'000'000LL)));
     double contacts = 0.0;
     double pairs = 0.0;
-    double impulses = 0.0;
+    double collisionImpulses = 0.0;
+    double contactRows = 0.0;
     double islands = 0.0;
     int threads = 0;
     const long long total = warmUp + steps;
@@ -187,7 +189,8 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
             const StepStats& stats = scene.world.lastStepStats();
             contacts += stats.contactPairs;
             pairs += stats.candidatePairs;
-            impulses += stats.contactRows;
+            collisionImpulses += stats.collisionImpulses;
+            contactRows += stats.contactRows;
             islands += stats.islands;
             threads = std::max(threads, stats.threads);
         }
@@ -224,7 +227,8 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
     result.threads = threads;
     result.contacts = contacts / n;
     result.pairs = pairs / n;
-    result.impulses = impulses / n;
+    result.collisionImpulses = collisionImpulses / n;
+    result.contactRows = contactRows / n;
     result.islands = islands / n;
     result.median = at(0.5);
     result.p10 = at(0.1);
@@ -285,7 +289,8 @@ nlohmann::ordered_json resultJson(const Result& r)
             {"threads", r.threads},
             {"contacts_per_step", r.contacts},
             {"pairs_per_step", r.pairs},
-            {"impulses_per_step", r.impulses},
+            {"collision_impulses_per_step", r.collisionImpulses},
+            {"contact_rows_per_step", r.contactRows},
             {"islands_per_step", r.islands},
             {"ms_per_step", {{"median", r.median}, {"p10", r.p10}, {"p90", r.p90}, {"mean", r.mean}}},
             {"load_seconds", r.loadSeconds},

@@ -351,8 +351,8 @@ void readSolver(const Field& field, StepOptions& options)
 {
     field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
                          "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold",
-                         "shock_propagation", "push_out", "push_out_allowance", "push_out_speed",
-                         "push_out_iterations", "sleep", "sleep_speed", "sleep_time"});
+                         "shock_propagation", "push_out", "push_out_allowance", "push_out_speed", "push_out_iterations",
+                         "sleep", "sleep_speed", "sleep_time"});
     if (field.has("scheme"))
     {
         const std::string scheme = field.at("scheme").text();

@@ -189,11 +189,11 @@ void ContactCache::follow(const Pairs& pairs, const ExactPair& exactPair, const 
     // parked entries whose bodies are awake again come back below if their pair is listed, else go
     for (auto it = m_parked.begin(); it != m_parked.end();)
     {
-        const auto listed = std::lower_bound(pairs.begin(), pairs.end(), it->first,
-                                             [](const auto& pair, std::uint64_t wanted)
-                                             { return key(pair.a, pair.b) < wanted; });
-        const bool keep = parkedPair(it->second.a, it->second.b) ||
-                          (listed != pairs.end() && key(listed->a, listed->b) == it->first);
+        const auto listed =
+            std::lower_bound(pairs.begin(), pairs.end(), it->first,
+                             [](const auto& pair, std::uint64_t wanted) { return key(pair.a, pair.b) < wanted; });
+        const bool keep =
+            parkedPair(it->second.a, it->second.b) || (listed != pairs.end() && key(listed->a, listed->b) == it->first);
         it = keep ? std::next(it) : m_parked.erase(it);
     }
     // both lists are sorted by (a, b): one merge

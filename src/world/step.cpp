@@ -444,12 +444,14 @@ void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSetting
         pairCoefficients.push_back(coefficients(bodies[pair.a].material, bodies[pair.b].material));
     }
     // a sleeping island's entries are parked, so that it wakes with the loads it slept with
-    const auto resting = [&](std::uint32_t i) { return bodies[i].asleep || (!bodies[i].dynamic && !bodies[i].removed); };
+    const auto resting = [&](std::uint32_t i)
+    { return bodies[i].asleep || (!bodies[i].dynamic && !bodies[i].removed); };
     contacts.follow(
         pairs,
         [&](std::uint32_t a, std::uint32_t b)
         { return detectedExactly(bodies[a].shape) || detectedExactly(bodies[b].shape); },
-        [&](std::uint32_t a, std::uint32_t b) { return (bodies[a].asleep || bodies[b].asleep) && resting(a) && resting(b); });
+        [&](std::uint32_t a, std::uint32_t b)
+        { return (bodies[a].asleep || bodies[b].asleep) && resting(a) && resting(b); });
     stats.candidatePairs = static_cast<int>(pairs.size());
 }
 
@@ -555,8 +557,8 @@ void WorldImpl::solveCollisions(const StepOptions& options, const PassSettings& 
                     // each island sweeps until a sweep applies nothing to it, or the cap
                     for (int sweep = 0; sweep < options.collisionIterations; ++sweep)
                     {
-                        const int impulses = sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)],
-                                                        options, settings, onlyNew);
+                        const int impulses = sweepPairs(islands[i], scratch[static_cast<std::size_t>(thread)], options,
+                                                        settings, onlyNew);
                         applied[i] += impulses;
                         ++sweeps[i];
                         if (impulses == 0)

@@ -1,17 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Reference scene 14: nonconvex meshes dropped into a box settle into a pile without going into
-// one another. Ten simulated seconds of hundreds of meshes: ctest label "pile", run on demand.
+// Reference scene 14 at a thousand meshes: nonconvex meshes dropped into a box settle into a pile
+// without going into one another. Ten simulated seconds of a thousand meshes take longer than CI's
+// budget: ctest label "pile", run on demand. The two-hundred-mesh pile is in piles_test.cpp.
 #include "support/pile_oracles.hpp"
 
 namespace impulse::test
 {
 namespace
 {
-
-TEST(ReferenceScene14, TwoHundredNonconvexBodiesSettleWithoutInterpenetrating)
-{
-    expectPileOracleHolds("nonconvex_pile_200");
-}
 
 TEST(ReferenceScene14, AThousandNonconvexBodiesSettleWithoutInterpenetrating)
 {

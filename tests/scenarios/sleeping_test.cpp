@@ -87,12 +87,12 @@ TEST(Sleeping, ABallThrownAtASleepingPyramidMovesItAsItMovesTheAwakeOne)
     {
         awake.world.step(awake.options);
         sleeping.world.step(sleeping.options);
-        ballGap = std::max(ballGap,
-                           (awake.world.state(ballAwake).position - sleeping.world.state(ballSleeping).position).norm());
+        ballGap = std::max(
+            ballGap, (awake.world.state(ballAwake).position - sleeping.world.state(ballSleeping).position).norm());
         for (const BodyId body : sleeping.dynamicBodies)
         {
-            bodyGap = std::max(bodyGap,
-                               (awake.world.state(body).position - sleeping.world.state(body).position).norm());
+            bodyGap =
+                std::max(bodyGap, (awake.world.state(body).position - sleeping.world.state(body).position).norm());
         }
     }
     // the strike woke the pyramid, and it reacted: the top cube was knocked at least 0.2 m

@@ -61,7 +61,8 @@ Vec3 upDirection(const Vec3& gravity)
     return g > 0.0 ? Vec3(-gravity / g) : Vec3(Vec3::UnitZ());
 }
 
-Bounds contentBounds(const io::Trajectory& trajectory, const SceneView& view)
+// The box every dynamic body's bounding sphere stays in over the trajectory (empty: inverted).
+Bounds sweptBounds(const io::Trajectory& trajectory, const SceneView& view)
 {
     Vec3 low = Vec3::Constant(INFINITY);
     Vec3 high = Vec3::Constant(-INFINITY);
@@ -74,6 +75,12 @@ Bounds contentBounds(const io::Trajectory& trajectory, const SceneView& view)
             high = high.cwiseMax(trajectory.at(i, k).position + Vec3::Constant(r));
         }
     }
+    return {low, high};
+}
+
+Bounds contentBounds(const io::Trajectory& trajectory, const SceneView& view)
+{
+    auto [low, high] = sweptBounds(trajectory, view);
     for (const StaticBody& body : view.staticBodies)
     {
         const Real r = boundingRadius(body.shape);
@@ -96,18 +103,7 @@ Bounds dynamicBounds(const io::Trajectory& trajectory, const SceneView& view)
     {
         return contentBounds(trajectory, view);
     }
-    Vec3 low = Vec3::Constant(INFINITY);
-    Vec3 high = Vec3::Constant(-INFINITY);
-    for (std::size_t i = 0; i < trajectory.sampleCount(); ++i)
-    {
-        for (std::size_t k = 0; k < trajectory.bodyCount; ++k)
-        {
-            const Real r = boundingRadius(view.dynamicShapes[k]);
-            low = low.cwiseMin(trajectory.at(i, k).position - Vec3::Constant(r));
-            high = high.cwiseMax(trajectory.at(i, k).position + Vec3::Constant(r));
-        }
-    }
-    return {low, high};
+    return sweptBounds(trajectory, view);
 }
 
 void checkMatches(const SceneView& view, const io::Trajectory& trajectory, const std::string& sceneName,
