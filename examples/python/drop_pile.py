@@ -38,7 +38,7 @@ def build_pile(count):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bodies", type=int, default=30)
-    parser.add_argument("--duration", type=float, default=3.0, help="seconds simulated")
+    parser.add_argument("--duration", type=float, default=4.0, help="seconds simulated")
     parser.add_argument("--dt", type=float, default=1e-3)
     parser.add_argument("--out", default="pile_energy.png")
     args = parser.parse_args()

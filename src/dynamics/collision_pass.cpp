@@ -57,8 +57,7 @@ Pose poseAtFraction(const RigidBody& body, const PassSettings& settings, Real fr
         pose.position += (fraction * settings.lookahead) * predictionVelocity(body, settings);
         return pose;
     }
-    return advancePose(body.pose(), predictionVelocity(body, settings), body.angularVelocity,
-                       fraction * settings.lookahead);
+    return advanceBody(body, predictionVelocity(body, settings), fraction * settings.lookahead);
 }
 
 // Normal velocity to add to u_rel so that the collision impulse is sized with the time-n velocity

@@ -1093,8 +1093,7 @@ void WorldImpl::updatePositions(const StepOptions& options)
                         {
                             return;
                         }
-                        const Pose next =
-                            advancePose(body.pose(), body.linearVelocity, body.angularVelocity, options.dt);
+                        const Pose next = advanceBody(body, body.linearVelocity, options.dt);
                         body.position = next.position;
                         body.orientation = next.orientation;
                         body.rotation = next.rotation;

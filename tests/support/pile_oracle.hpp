@@ -417,15 +417,12 @@ inline const ReferencePile* findReferencePile(std::string_view name)
     return pile == kReferencePiles.end() ? nullptr : &*pile;
 }
 
-/// The pile's run as its test makes it: the shipped scene; scenes 11 and 12 on every core (the
-/// trajectory is the same at any thread count), scene 14 at the scene's own count.
+/// The pile's run as its test makes it: the shipped scene, on one thread. ctest runs tests side by
+/// side, a formed pile is one island, and the trajectory is the same at any thread count.
 inline PileRun referencePileRun(const ReferencePile& pile)
 {
     PileRun run(loadReferenceScene(std::string(pile.name)), pile.kind, pile.size);
-    if (pile.kind == PileOracleKind::StaysInTheBox)
-    {
-        run.scene().options.threads = 0;
-    }
+    run.scene().options.threads = 1;
     return run;
 }
 
