@@ -74,6 +74,19 @@ const ContactPoint* withFeature(const std::vector<ContactPoint>& points, const C
     return nullptr;
 }
 
+// Every exact point has a cached one of its feature, at the same place, normal and separation.
+void expectSamePoints(const std::vector<ContactPoint>& cached, const std::vector<ContactPoint>& exact)
+{
+    for (const ContactPoint& e : exact)
+    {
+        const ContactPoint* c = withFeature(cached, e);
+        ASSERT_NE(c, nullptr) << "no cached point of feature " << e.feature;
+        EXPECT_NEAR(c->phi, e.phi, kTol);
+        EXPECT_LT((c->point - e.point).norm(), kTol);
+        EXPECT_LT((c->normal - e.normal).norm(), kTol);
+    }
+}
+
 const auto kNeverExact = [](std::uint32_t, std::uint32_t) { return false; };
 
 // A unit cube (body 0) a few millimetres above the ground plane (body 1), turned about z and tilted a
@@ -110,14 +123,7 @@ TEST_F(ContactCacheBoxOnPlane, ACaptureHoldsThePointsAndSeparationsOfTheExactNar
     const std::vector<ContactPoint> cached = cachedPoints(cache, 0, a, plane);
     ASSERT_EQ(cached.size(), exact.size());
     EXPECT_TRUE(cache.entry(0).captured);
-    for (const ContactPoint& e : exact)
-    {
-        const ContactPoint* c = withFeature(cached, e);
-        ASSERT_NE(c, nullptr) << "no cached point of feature " << e.feature;
-        EXPECT_NEAR(c->phi, e.phi, kTol);
-        EXPECT_LT((c->point - e.point).norm(), kTol);
-        EXPECT_LT((c->normal - e.normal).norm(), kTol);
-    }
+    expectSamePoints(cached, exact);
 }
 
 TEST_F(ContactCacheBoxOnPlane, KeepsItsPointsWhileTheBoxMovesWithinItsReach)
@@ -332,14 +338,7 @@ TEST_F(ContactCacheBoxOnBox, ACaptureOfABoxOnALargerBoxHoldsThePointsOfTheExactN
     ASSERT_EQ(exact.size(), 4u) << "the scene's premise: the small box's lower face on the large one's top";
     const std::vector<ContactPoint> cached = cachedPoints(cache, 0, top, bottom);
     ASSERT_EQ(cached.size(), exact.size());
-    for (const ContactPoint& e : exact)
-    {
-        const ContactPoint* c = withFeature(cached, e);
-        ASSERT_NE(c, nullptr) << "no cached point of feature " << e.feature;
-        EXPECT_NEAR(c->phi, e.phi, kTol);
-        EXPECT_LT((c->point - e.point).norm(), kTol);
-        EXPECT_LT((c->normal - e.normal).norm(), kTol);
-    }
+    expectSamePoints(cached, exact);
 }
 
 TEST_F(ContactCacheBoxOnBox, SaveAndRestoreRoundTripBitForBit)
