@@ -167,23 +167,26 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
 Real closingSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                   const ContactPoint& contact)
 {
-    return -(a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB)).dot(contact.normal);
+    const LeverCentres centres = leverCentres(a, poseA, b, poseB);
+    return -(a.pointVelocityAbout(contact.point, centres.a) - b.pointVelocityAbout(contact.point, centres.b))
+                .dot(contact.normal);
 }
 
-ContactBody contactBody(const RigidBody& body, const Vec3& point, const Pose& pose)
+ContactBody contactBody(const RigidBody& body, const Vec3& point, const Vec3& centre)
 {
     if (body.immovable())
     {
         return {};
     }
-    return {body.invMass, body.invInertiaWorld, point - pose.position};
+    return {body.invMass, body.invInertiaWorld, point - centre};
 }
 
 bool applyContactImpulse(RigidBody& a, RigidBody& b, const ContactPoint& contact, const Pose& poseA, const Pose& poseB,
                          Real eps, Real mu, const PassSettings& settings)
 {
-    const ContactBody ca = contactBody(a, contact.point, poseA);
-    const ContactBody cb = contactBody(b, contact.point, poseB);
+    const LeverCentres centres = leverCentres(a, poseA, b, poseB);
+    const ContactBody ca = contactBody(a, contact.point, centres.a);
+    const ContactBody cb = contactBody(b, contact.point, centres.b);
     const Mat3 K = collisionMatrix(ca, cb);
     const Vec3 uRel = relativeVelocity(a, poseA, b, poseB, contact, settings);
     if (eps > 0.0 && closingSpeed(a, poseA, b, poseB, contact) < settings.restitutionThreshold)
@@ -277,6 +280,7 @@ bool applyPatchRestitution(RigidBody& a, RigidBody& b, const std::vector<Contact
 {
     constexpr int kPatchSweeps = 16;
     std::array<SolverBody, 2> bodies = {SolverBody::of(a), SolverBody::of(b)};
+    const LeverCentres centres = leverCentres(a, a.predicted, b, b.predicted);
     std::vector<ContactRow>& rows = scratch.rows;
     rows.clear();
     Real speed = 0.0;
@@ -285,8 +289,7 @@ bool applyPatchRestitution(RigidBody& a, RigidBody& b, const std::vector<Contact
         Vec3 t1;
         Vec3 t2;
         tangentBasis(point.normal, t1, t2);
-        ContactRow row =
-            makeContactRow(RowSide::of(a, 0, a.predicted), RowSide::of(b, 1, b.predicted), point, t1, t2, mu);
+        ContactRow row = makeContactRow(RowSide::of(a, 0, centres.a), RowSide::of(b, 1, centres.b), point, t1, t2, mu);
         row.gap = -kInfinity; // in play throughout
         const Real un = row.relativeVelocity(0, bodies[0], bodies[1]);
         const Real correction = settings.midStepRestitution ? midStepCorrection(a, b, un, point.normal, settings) : 0.0;
@@ -302,11 +305,8 @@ bool applyPatchRestitution(RigidBody& a, RigidBody& b, const std::vector<Contact
     {
         pointers.push_back(&row);
     }
-    const auto mover = [&](const RigidBody& body, std::uint32_t index) {
-        return PatchMover{index, body.predicted.position, body.invMass, body.invInertiaWorld};
-    };
-    const PatchMover moverA = mover(a, 0);
-    const PatchMover moverB = mover(b, 1);
+    const PatchMover moverA{0, centres.a, a.invMass, a.invInertiaWorld};
+    const PatchMover moverB{1, centres.b, b.invMass, b.invInertiaWorld};
     const bool rigid = a.dynamic
                            ? solveRigidPatch(pointers, bodies, moverA, b.dynamic ? &moverB : nullptr,
                                              kSolverResolution * speed, scratch)
@@ -342,8 +342,9 @@ bool applyPatchRestitution(RigidBody& a, RigidBody& b, const std::vector<Contact
 Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                    const ContactPoint& point, const PassSettings& settings)
 {
-    const Vec3 ra = point.point - poseA.position;
-    const Vec3 rb = point.point - poseB.position;
+    const LeverCentres centres = leverCentres(a, poseA, b, poseB);
+    const Vec3 ra = point.point - centres.a;
+    const Vec3 rb = point.point - centres.b;
     const Vec3 uRel = a.linearVelocity + a.angularVelocity.cross(ra) - b.linearVelocity - b.angularVelocity.cross(rb);
     const Real un = uRel.dot(point.normal);
     if (!(un < 0.0))
@@ -359,7 +360,8 @@ Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, co
 Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                       const ContactPoint& contact, const PassSettings& settings)
 {
-    Vec3 uRel = a.pointVelocity(contact.point, poseA) - b.pointVelocity(contact.point, poseB);
+    const LeverCentres centres = leverCentres(a, poseA, b, poseB);
+    Vec3 uRel = a.pointVelocityAbout(contact.point, centres.a) - b.pointVelocityAbout(contact.point, centres.b);
     if (settings.midStepRestitution)
     {
         uRel += midStepCorrection(a, b, uRel.dot(contact.normal), contact.normal, settings) * contact.normal;

@@ -129,11 +129,11 @@ struct RowSide
     Mat3 invInertia = Mat3::Zero(); ///< world frame
     Vec3 centre = Vec3::Zero();     ///< the centre lever arms are taken from
 
-    /// A body placed at `pose` (lever arms from there), with its inverse inertia of time n.
-    static RowSide of(const RigidBody& body, std::uint32_t index, const Pose& pose)
+    /// A body with lever arms from `centre` (leverCentres), with its inverse inertia of time n.
+    static RowSide of(const RigidBody& body, std::uint32_t index, const Vec3& centre)
     {
         return {index, body.dynamic, body.dynamic ? body.invMass : 0.0,
-                body.dynamic ? body.invInertiaWorld : Mat3::Zero(), pose.position};
+                body.dynamic ? body.invInertiaWorld : Mat3::Zero(), centre};
     }
 };
 

@@ -72,10 +72,36 @@ struct RigidBody
     /// World frame from the principal axes of inertia: `rotation` unless they differ from the body axes.
     Mat3 principalRotation() const { return principalAxesAligned ? rotation : Mat3(rotation * inertiaAxes); }
     /// Velocity of the material point at world point p, with the body placed at `at`.
-    Vec3 pointVelocity(const Vec3& p, const Pose& at) const
+    Vec3 pointVelocity(const Vec3& p, const Pose& at) const { return pointVelocityAbout(p, at.position); }
+    /// Velocity of the material point at world point p, its lever arm taken from `centre`.
+    Vec3 pointVelocityAbout(const Vec3& p, const Vec3& centre) const
     {
-        return linearVelocity + angularVelocity.cross(p - at.position);
+        return linearVelocity + angularVelocity.cross(p - centre);
     }
 };
+
+/// The centres a contact's lever arms are taken from (arm = contact point - centre), for a contact
+/// found with the bodies placed at poseA and poseB.
+struct LeverCentres
+{
+    Vec3 a;
+    Vec3 b;
+};
+
+/// Between two dynamic bodies both arms end at one point: the contact carried back to time n by the
+/// pair's mean displacement, with the arms from the time-n centres of mass. An impulse then has the
+/// same moment about any origin on both bodies, and a collision keeps angular momentum to round-off;
+/// each arm from its own displaced centre would apply the impulse at two points (d_a - d_b) apart, a
+/// first-order change of dt (v_a - v_b) x j. Against a static body, which takes up any angular
+/// momentum, the moving body's arm is from its centre at its pose.
+inline LeverCentres leverCentres(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB)
+{
+    if (!a.dynamic || !b.dynamic)
+    {
+        return {poseA.position, poseB.position};
+    }
+    const Vec3 meanDisplacement = 0.5 * ((poseA.position - a.position) + (poseB.position - b.position));
+    return {a.position + meanDisplacement, b.position + meanDisplacement};
+}
 
 } // namespace impulse

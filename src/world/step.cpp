@@ -876,6 +876,7 @@ void WorldImpl::buildRows(Island& island, ThreadScratch& local, const StepOption
         ContactEntry& entry = contacts.entry(k);
         local.points.clear();
         contacts.entryPoints(k, placed(pair.a, a.predicted), placed(pair.b, b.predicted), local.points);
+        const LeverCentres centres = leverCentres(a, a.predicted, b, b.predicted);
         for (std::size_t i = 0; i < entry.points.size(); ++i)
         {
             CachedPoint& cached = entry.points[i];
@@ -884,8 +885,8 @@ void WorldImpl::buildRows(Island& island, ThreadScratch& local, const StepOption
             Vec3 t2;
             tangentBasis(cached.normal, t1, t2);
             const Mat3& owner = cached.normalOnA ? a.predicted.rotation : b.predicted.rotation;
-            ContactRow row = makeContactRow(RowSide::of(a, pair.a, a.predicted), RowSide::of(b, pair.b, b.predicted),
-                                            point, owner * t1, owner * t2, pairCoefficients[k].friction);
+            ContactRow row = makeContactRow(RowSide::of(a, pair.a, centres.a), RowSide::of(b, pair.b, centres.b), point,
+                                            owner * t1, owner * t2, pairCoefficients[k].friction);
             // the separation at time n, to first order: the gap the predicted motion closes
             const Real un = row.relativeVelocity(0, solverBodies[pair.a], solverBodies[pair.b]);
             row.gap = point.phi - settings.lookahead * un;
