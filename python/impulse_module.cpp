@@ -367,6 +367,17 @@ std::shared_ptr<const MeshGeometry> loadMesh(const std::filesystem::path& path, 
     return MeshGeometry::build(mesh, {.resolution = resolution});
 }
 
+/// The messages of the warnings, for Python: each says what it is about.
+std::vector<std::string> warningMessages(const std::vector<Warning>& warnings)
+{
+    std::vector<std::string> messages;
+    for (const Warning& warning : warnings)
+    {
+        messages.push_back(warning.message);
+    }
+    return messages;
+}
+
 // ---- scenes ----
 
 /// A world with what a scene file or a model says about it.
@@ -693,6 +704,19 @@ void bind(py::module_& m)
             py::arg("options") = py::none(), py::kw_only(), py::arg("steps") = 1,
             "Advances by `steps` steps of options.dt. Step options come from `options` (a StepOptions), each "
             "overridden by a keyword argument of the same name: world.step(dt=1e-3, shock_propagation=False).")
+        .def(
+            "warnings",
+            [](const World& w, const py::object& options, const std::vector<std::string>& names,
+               const py::kwargs& kwargs)
+            {
+                StepOptions o = options.is_none() ? StepOptions{} : options.cast<StepOptions>();
+                setOptions(o, kwargs, "warnings");
+                return warningMessages(w.warnings(o, names));
+            },
+            py::arg("options") = py::none(), py::kw_only(), py::arg("names") = std::vector<std::string>{},
+            "What would make stepping from here with these options a poor simulation (docs/warnings.md), as "
+            "messages saying why and what to do; empty when nothing was found. Options as for step(); `names` "
+            "(per body handle) name the bodies in the messages.")
         .def_property_readonly("time", &World::time)
         .def_property_readonly("stats", [](const World& w) { return statsDict(w.lastStepStats()); })
         .def("contacts", &contactsDict,
@@ -970,8 +994,17 @@ void bind(py::module_& m)
                 setOptions(o, kwargs, "step");
                 stepWorld(s.scene.world, o, steps);
             },
-            py::kw_only(), py::arg("steps") = 1,
-            "Steps the world with the scene's options, keyword overrides applied.");
+            py::kw_only(), py::arg("steps") = 1, "Steps the world with the scene's options, keyword overrides applied.")
+        .def(
+            "warnings",
+            [](const LoadedScene& s, const py::kwargs& kwargs)
+            {
+                StepOptions o = s.scene.options;
+                setOptions(o, kwargs, "warnings");
+                return warningMessages(s.scene.world.warnings(o, s.scene.bodyNames));
+            },
+            "World.warnings with the scene's options (keyword overrides applied) and its body names: what the "
+            "command line prints before a run.");
 
     m.def("load_scene", &loadScenePath, py::arg("path"), "Reads a JSON scene file (docs/scene-format.md).");
     m.def("load_model", &loadModelPath, py::arg("path"), "Reads an MJCF model through MuJoCo (docs/mujoco.md).");

@@ -3,6 +3,7 @@
 
 #include "option_checks.hpp"
 #include "progress.hpp"
+#include "scene_warnings.hpp"
 
 #include <impulse/io/scene.hpp>
 
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <thread>
 #include <unistd.h>
 
@@ -111,6 +113,7 @@ struct Result
     double totalSeconds = 0.0;
     std::uint64_t hash = 0;
     double kineticEnergy = 0.0;
+    std::vector<std::string> warnings; ///< docs/warnings.md
 };
 
 std::string hex(std::uint64_t hash)
@@ -167,6 +170,8 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
         }
     }
     scene.options.threads = options.threads;
+    progress.clear();
+    result.warnings = reportWarnings(scene, file.path.string());
 
     std::vector<double> times;
     times.reserve(static_cast<std::size_t>(std::min(steps, 10'000'000LL)));
@@ -181,7 +186,17 @@ int measure(const SceneFile& file, const BenchOptions& options, Progress& progre
     for (long long k = 0; k < total; ++k)
     {
         const auto start = Clock::now();
-        scene.world.step(scene.options);
+        try
+        {
+            scene.world.step(scene.options);
+        }
+        catch (const std::invalid_argument& error)
+        {
+            // options the world refuses, such as tolerances too coarse for its smallest body
+            progress.clear();
+            std::cerr << "impulse: " << file.path.string() << ": " << error.what() << "\n";
+            return 2;
+        }
         const auto end = Clock::now();
         if (k >= warmUp)
         {
@@ -296,7 +311,8 @@ nlohmann::ordered_json resultJson(const Result& r)
             {"load_seconds", r.loadSeconds},
             {"total_seconds", r.totalSeconds},
             {"state_hash", hex(r.hash)},
-            {"kinetic_energy", r.kineticEnergy}};
+            {"kinetic_energy", r.kineticEnergy},
+            {"warnings", r.warnings}};
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 #include "render_command.hpp"
 
 #include "progress.hpp"
+#include "scene_warnings.hpp"
 #include "see_inputs.hpp"
 #include "stop_request.hpp"
 
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 namespace impulse::app
@@ -58,10 +60,18 @@ LoadedRun simulateScene(const RenderOptions& options)
             run.trajectory.samples.push_back({s.position, s.orientation, s.linearVelocity, s.angularVelocity});
         }
     };
+    reportWarnings(scene, options.inputPath);
     record(0);
     for (long long step = 1; step <= steps; ++step)
     {
-        scene.world.step(scene.options);
+        try
+        {
+            scene.world.step(scene.options);
+        }
+        catch (const std::invalid_argument& error)
+        {
+            throw InputError(options.inputPath + ": " + error.what());
+        }
         if (step % stride == 0 || step == steps)
         {
             record(step);

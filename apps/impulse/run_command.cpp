@@ -2,6 +2,7 @@
 #include "run_command.hpp"
 
 #include "progress.hpp"
+#include "scene_warnings.hpp"
 #include "see_inputs.hpp"
 #include "stop_request.hpp"
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace impulse::app
 {
@@ -108,6 +110,8 @@ int runScene(const RunOptions& options)
         return 2;
     }
 
+    reportWarnings(scene, options.scenePath);
+
     // The trajectory is written sample by sample into `pending` and handed to the file in whole
     // samples (at most every 0.2 s of wall time or 4 MB), so that the file ends with a whole sample
     // whenever the run stops, even when it is killed outright.
@@ -151,7 +155,17 @@ int runScene(const RunOptions& options)
     std::string stoppedBy;
     for (long long step = 1; step <= steps; ++step)
     {
-        scene.world.step(scene.options);
+        try
+        {
+            scene.world.step(scene.options);
+        }
+        catch (const std::invalid_argument& error)
+        {
+            // options the world refuses, such as tolerances too coarse for its smallest body
+            progress.clear();
+            std::cerr << "impulse: " << options.scenePath << ": " << error.what() << "\n";
+            return 2;
+        }
         done = step;
         // stop before a non-finite state reaches the file (cheap: a few comparisons per body)
         if (!stateIsFinite(scene.world, scene.dynamicBodies))

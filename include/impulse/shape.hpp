@@ -50,6 +50,11 @@ using Shape = std::variant<Sphere, Box, Plane, Capsule, Mesh>;
 /// Radius of a sphere about the body origin that contains the shape (infinite for a plane).
 Real boundingRadius(const Shape& shape);
 
+/// Half the shape's thinnest extent: a sphere's or capsule's radius, a box's least half extent, half
+/// the least side of a mesh's box in its body frame (infinite for a plane). The length the step's
+/// tolerances and a step's motion are weighed against (docs/warnings.md).
+Real thinnestHalfExtent(const Shape& shape);
+
 /// Volume of the shape (infinite for a plane).
 Real volume(const Shape& shape);
 

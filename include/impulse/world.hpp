@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace impulse
@@ -148,6 +149,35 @@ struct StepStats
     } milliseconds;
 };
 
+/// A legal input that gives a poor simulation: what was found, why it matters and what to do, in
+/// one message (docs/warnings.md gives each kind's criterion). Bodies are named as World::warnings
+/// is told, else "body k" with k the index in creation order (a scene file's /bodies/k).
+struct Warning
+{
+    enum class Kind
+    {
+        LargeTimeStep,  ///< gravity moves a body from rest more than an eighth of the smallest body's size in one step
+        FastBody,       ///< a body's initial speed moves it more than half the smallest body's size in one step
+        SmallBody,      ///< a body less than a hundred times the step's largest length tolerance
+        InitialOverlap, ///< two bodies that collide overlap at the start by more than the contact thickness
+        MassRatio,      ///< two bodies that can touch differ in mass more than ten thousand times
+        FarFromOrigin,  ///< coordinates so large that their round-off is over a hundredth of the contact thickness
+    };
+    Kind kind;
+    std::string message;
+};
+
+/// The smallest thinnestHalfExtent that the length tolerances of `options` serve: ten times the
+/// largest of the contact thickness, the push-out allowance (when push-out is on) and the 1e-9 m to
+/// which push-out converges. A body rests anywhere within the contact thickness of a surface, and an
+/// overlap within the allowance is left as it is, so each must be at most a tenth of every body.
+Real smallestServedSize(const StepOptions& options);
+
+/// Why a body whose thinnest half extent is `size` cannot be simulated with `options` (the
+/// tolerance that does not serve it, and what to set), or "" when it can. World::step throws
+/// std::invalid_argument with this reason for the smallest body of a world.
+std::string sizeRefusal(Real size, const StepOptions& options);
+
 class WorldImpl;
 
 /// A set of rigid bodies advanced together.
@@ -237,8 +267,18 @@ class World
     /// (within 1e-9), or an angular velocity that does not follow from the angular momentum.
     void restore(const WorldSnapshot& snapshot);
 
-    /// Advances the world by options.dt with the separated collision / contact time step.
+    /// Advances the world by options.dt with the separated collision / contact time step. Throws
+    /// std::invalid_argument ("size: ...") when a body is smaller than the options' length tolerances
+    /// serve (see sizeRefusal).
     void step(const StepOptions& options);
+
+    /// What would make stepping this world from its present state with `options` a poor simulation
+    /// (docs/warnings.md): a time step too large for the bodies, a body near the smallest size the
+    /// tolerances serve, bodies overlapping, masses too far apart, coordinates too large for the
+    /// contact thickness. Empty when nothing was found. `names`, per body in creation order, names the
+    /// bodies in the messages; a missing or empty name gives "body k". Costs a broad phase and a
+    /// narrow phase over the touching pairs: meant for once, after a scene is built.
+    std::vector<Warning> warnings(const StepOptions& options, const std::vector<std::string>& names = {}) const;
 
     /// Bodies ever created, removed ones included: valid handles are numbered below it.
     std::uint32_t bodyCount() const;

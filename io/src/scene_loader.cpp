@@ -580,6 +580,16 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
                 }
             }
         }
+        // a body the step's length tolerances cannot serve is refused here, at its size's field;
+        // World::step would refuse it too, without the file
+        if (const std::string reason = sizeRefusal(thinnestHalfExtent(def.shape), scene.options); !reason.empty())
+        {
+            const Field shape = body.at("shape");
+            const char* size = std::holds_alternative<Box>(def.shape)    ? "half_extents"
+                               : std::holds_alternative<Mesh>(def.shape) ? (shape.has("scale") ? "scale" : "file")
+                                                                         : "radius";
+            shape.at(size).fail(reason);
+        }
         try
         {
             const BodyId id = scene.world.createBody(def);

@@ -250,6 +250,30 @@ def test_meshes_from_files_and_models():
         assert not np.array_equal(model.world.positions(model.dynamic_bodies), start)
 
 
+# ---- warnings: legal input that gives a poor simulation (docs/warnings.md) ----
+
+
+def test_warnings_say_what_would_make_a_run_poor():
+    scene = impulse.load_scene(SCENES / "ball_drop_elastic.json")
+    assert scene.warnings() == []
+    (step,) = scene.warnings(dt=1.0)
+    assert "dt = 1 s is too large" in step and '"ball"' in step
+    world, material = free_space()
+    world.create_body(impulse.Sphere(0.1), material=material, mass=1.0)
+    world.create_body(impulse.Sphere(0.1), material=material, mass=1.0, position=(0.15, 0.0, 0.0))
+    (overlap,) = world.warnings(names=["a", "b"])
+    assert '"a" and "b" overlap by 0.05 m' in overlap
+    assert "body 0 and body 1 overlap" in world.warnings(dt=1e-3)[0]
+
+
+def test_a_body_the_tolerances_do_not_serve_is_refused_when_stepped():
+    world, material = free_space()
+    world.create_body(impulse.Sphere(1e-5), material=material, mass=1e-11)
+    with pytest.raises(ValueError, match=r"size: body 0: .*push_out_allowance \(0\.0001 m\)"):
+        world.step(dt=1e-3)
+    world.step(dt=1e-4, contact_thickness=1e-7, push_out_allowance=1e-6)
+
+
 # ---- bad input ----
 
 

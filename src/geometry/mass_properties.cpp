@@ -50,6 +50,15 @@ Real boundingRadius(const Shape& shape)
         shape);
 }
 
+Real thinnestHalfExtent(const Shape& shape)
+{
+    return std::visit(
+        Overloaded{[](const Sphere& s) { return s.radius; }, [](const Box& b) { return b.halfExtents.minCoeff(); },
+                   [](const Plane&) { return kInfinity; }, [](const Capsule& c) { return c.radius; },
+                   [](const Mesh& m) { return 0.5 * (m.geometry->upper() - m.geometry->lower()).minCoeff(); }},
+        shape);
+}
+
 Real volume(const Shape& shape)
 {
     return std::visit(

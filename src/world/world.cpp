@@ -285,7 +285,13 @@ BodyId World::createBody(const BodyDef& def)
         m_impl->wakeAll(); // the broad phase pairs no static body with a sleeping one
     }
     m_impl->bodies.push_back(body);
-    return {static_cast<std::uint32_t>(m_impl->bodies.size() - 1)};
+    const auto index = static_cast<std::uint32_t>(m_impl->bodies.size() - 1);
+    if (const Real size = thinnestHalfExtent(body.shape); size < m_impl->smallestSize)
+    {
+        m_impl->smallestSize = size;
+        m_impl->smallestBody = index;
+    }
+    return {index};
 }
 
 void World::setState(BodyId id, const Vec3& position, const Quat& orientation, const Vec3& linearVelocity,
@@ -315,6 +321,7 @@ void World::removeBody(BodyId id)
     // a tombstone: static and at rest, so that no stage moves it or counts it, and left out of the
     // broad phase, so that nothing pairs with it
     body.removed = true;
+    m_impl->smallestKnown = false;
     body.dynamic = false;
     body.mass = std::numeric_limits<Real>::infinity();
     body.invMass = 0.0;
@@ -637,6 +644,14 @@ void World::step(const StepOptions& options)
     if (!(options.sleepTime >= 0.0) || !std::isfinite(options.sleepTime))
     {
         throw std::invalid_argument("sleep_time: must be a non-negative finite time");
+    }
+    if (!m_impl->smallestKnown)
+    {
+        m_impl->findSmallestBody();
+    }
+    if (const std::string reason = sizeRefusal(m_impl->smallestSize, options); !reason.empty())
+    {
+        throw std::invalid_argument("size: body " + std::to_string(m_impl->smallestBody) + ": " + reason);
     }
     m_impl->step(options);
 }

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <set>
 #include <span>
@@ -121,6 +122,13 @@ class WorldImpl
 
     PairCoefficients coefficients(MaterialId a, MaterialId b) const;
     void step(const StepOptions& options);
+
+    /// The live body of least thinnestHalfExtent and that extent (infinite when there is none), for
+    /// the size check of World::step; found again by findSmallestBody when a removal left it stale.
+    Real smallestSize = std::numeric_limits<Real>::infinity();
+    std::uint32_t smallestBody = 0;
+    bool smallestKnown = true;
+    void findSmallestBody();
 
     // what the World API sets between steps (world.cpp)
     std::set<std::pair<std::uint32_t, std::uint32_t>> disabledPairs; ///< (lower, higher): never collide

@@ -76,7 +76,7 @@ endif()
 set(machine_fields hardware_threads cpu compiler build_type sanitizers)
 set(option_fields steps warm_up threads scenes_dir)
 set(scene_fields name path bodies dt steps warm_up threads contacts_per_step pairs_per_step collision_impulses_per_step contact_rows_per_step
-    islands_per_step ms_per_step load_seconds total_seconds state_hash kinetic_energy)
+    islands_per_step ms_per_step load_seconds total_seconds state_hash kinetic_energy warnings)
 set(json_hashes "")
 foreach(attempt 1 2)
     run_impulse(bench box_stack_10 ${short} --json)

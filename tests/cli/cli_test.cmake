@@ -121,6 +121,8 @@ set(expect_unknown_shape "^/bodies/1/shape/type: unknown shape \"cylinder\"")
 set(expect_mesh_not_closed "^/bodies/1/shape/file: .*open_box.obj: not closed: the edge from")
 set(expect_mesh_missing_file "^/bodies/1/shape/file: .*no_such_mesh.obj: no such file")
 set(expect_number_overflow "^(/bodies/1/shape/radius: .*finite|.*1e999)")
+# legal, but smaller than any options serve (docs/warnings.md)
+set(expect_tiny_sphere "^/bodies/1/shape/radius: its thinnest half extent, 1e-09 m, is below .*no options serve a body under 1e-08 m")
 
 file(GLOB bad_scenes "${DATA}/bad/*.json")
 list(SORT bad_scenes)

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -415,6 +416,35 @@ TEST(Refusal, MeshThatIsNotAClosedSolidNamesTheGeomTheMeshAndTheReason)
               "  - mesh geom 'box' (mesh 'open_box'): not a closed solid: not closed: the edge from (0.587499976, "
               "-0.5, 0.5) to (0.587499976, 0.5, 0.5) of triangle 3 has no neighbour across it (a hole in the "
               "surface)");
+}
+
+TEST(Warnings, NoModelThatLoadsWarns)
+{
+    // the test models impulse simulates, and the example model; the others are refused above
+    std::vector<std::string> paths{std::string(IMPULSE_SCENES_DIR) + "/../examples/falling_shapes.xml"};
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(IMPULSE_TEST_DATA_DIR) + "/mujoco"))
+    {
+        paths.push_back(entry.path().string());
+    }
+    int loaded = 0;
+    for (const std::string& path : paths)
+    {
+        io::Scene scene;
+        try
+        {
+            scene = loadMjcfScene(path);
+        }
+        catch (const ModelError&)
+        {
+            continue;
+        }
+        ++loaded;
+        for (const Warning& warning : scene.world.warnings(scene.options, scene.bodyNames))
+        {
+            ADD_FAILURE() << path << ": " << warning.message;
+        }
+    }
+    EXPECT_GE(loaded, 2);
 }
 
 // Largest |signed distance| of the `reference` mesh's vertices, placed by `referencePose`, from the
