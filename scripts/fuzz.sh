@@ -16,8 +16,9 @@ fi
 build=${IMPULSE_FUZZ_BUILD_DIR:-$root/build-fuzz}
 jobs=${IMPULSE_FUZZ_JOBS:-1}
 
-# -O1 and line tables: what the sanitizer build of .ci/run uses; OpenMP off, one thread per input
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# Debian's clang 14 (install-deps.sh); -O1 and line tables as in the sanitizer build of .ci/run;
+# OpenMP off, one thread per input
+CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DIMPULSE_FUZZ=ON -DIMPULSE_BUILD_TESTS=OFF \
   -DIMPULSE_BUILD_APP=OFF -DIMPULSE_BUILD_BENCH=OFF -DIMPULSE_BUILD_PYTHON=OFF -DIMPULSE_WITH_MUJOCO=OFF \
   -DIMPULSE_WITH_OPENMP=OFF > /dev/null
