@@ -20,6 +20,9 @@ packages=(
   libbenchmark-dev     # benchmarks
   libbullet-dev        # optional: impulse_bench_bullet runs the same scenes in Bullet 3.24 for comparison
   clang-format         # formatting check
+  clang-14             # the fuzz targets (scripts/fuzz.sh) build with clang ...
+  libclang-rt-14-dev   # ... and its runtimes: the sanitizers, and libFuzzer as -fsanitize=fuzzer links it
+  libfuzzer-14-dev     # ... libFuzzer as a library of its own (libFuzzer.a), for linking by hand
   libmujoco-dev        # optional: MJCF models, impulse compare (impulse_mujoco, MuJoCo 2.2.2)
   python3-dev          # the Python module (import impulse) ...
   pybind11-dev         # ... its bindings

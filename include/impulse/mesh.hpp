@@ -10,6 +10,7 @@
 #include <impulse/math.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -40,6 +41,12 @@ struct MeshOptions
     /// Grid cells along the longest side of the mesh's bounding box; 0 chooses from the mesh
     /// (see docs/architecture.md, "Nonconvex bodies").
     int resolution = 0;
+    /// Most samples the grid may have (the box grown by 3 cells on each side, so resolution + 7
+    /// along the longest side). Building takes about 32 bytes a sample (a cube at resolution 256:
+    /// 0.6 GB and 10 s), so a resolution too fine for the mesh's shape is refused with MeshError
+    /// instead of taking gigabytes. 256^3 samples admit a cube at resolution 249 and a rod sixteen
+    /// times longer than wide at 1024.
+    std::size_t maxGridSamples = std::size_t{1} << 24;
 };
 
 /// phi at a point and its unit gradient (the outward normal of the nearest surface), body frame.

@@ -255,6 +255,7 @@ class Field
 struct MeshLibrary
 {
     std::filesystem::path directory; ///< relative mesh paths start here: the scene file's directory
+    SceneLimits limits;
     std::map<std::tuple<std::string, Real, Real, Real, int>, std::shared_ptr<const MeshGeometry>> prepared;
     std::map<const MeshGeometry*, MeshSource> sources; ///< what each prepared geometry was read from
 };
@@ -263,7 +264,29 @@ Mesh readMesh(const Field& field, MeshLibrary& library)
 {
     field.requireObject({"type", "file", "scale", "resolution"});
     const Field file = field.at("file");
-    const std::filesystem::path path = library.directory / file.text();
+    const std::string name = file.text();
+    if (name.find('\0') != std::string::npos)
+    {
+        // the system would read the path only up to it, a different file from the one named
+        file.fail("must not contain a NUL character");
+    }
+    const std::filesystem::path relative(name);
+    if (library.limits.meshFilesInsideDirectory)
+    {
+        if (relative.has_root_path())
+        {
+            file.fail("must be a path inside the scene's directory, got the absolute path " + describe(file.json()));
+        }
+        for (const auto& part : relative)
+        {
+            if (part == "..")
+            {
+                file.fail("must be a path inside the scene's directory, got " + describe(file.json()) +
+                          ", which leaves it by \"..\"");
+            }
+        }
+    }
+    const std::filesystem::path path = library.directory / relative;
     Vec3 scale = Vec3::Ones();
     if (field.has("scale"))
     {
@@ -271,6 +294,7 @@ Mesh readMesh(const Field& field, MeshLibrary& library)
         scale = value.json().is_array() ? value.positiveVec3() : Vec3::Constant(value.positive());
     }
     MeshOptions options;
+    options.maxGridSamples = library.limits.maxGridSamples;
     if (field.has("resolution"))
     {
         options.resolution = field.at("resolution").count(4);
@@ -433,9 +457,10 @@ void readSolver(const Field& field, StepOptions& options)
 
 } // namespace
 
-Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory)
+Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory,
+                 const SceneLimits& limits)
 {
-    MeshLibrary meshes{directory, {}, {}};
+    MeshLibrary meshes{directory, limits, {}, {}};
     Json document;
     try
     {

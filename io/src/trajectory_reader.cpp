@@ -20,6 +20,15 @@ constexpr std::size_t columnCount = 15;
     throw TrajectoryError(source + ": line " + std::to_string(line) + ": " + what);
 }
 
+/// A number as short as it can be written and still exact: "2", "0.5", "3.3333333333333331e+123".
+std::string numberText(double value)
+{
+    std::ostringstream text;
+    text.precision(17);
+    text << value;
+    return text.str();
+}
+
 /// Splits one row into exactly 15 finite numbers, or says why it cannot.
 std::array<double, columnCount> parseRow(const std::string& row, const std::string& source, std::size_t line)
 {
@@ -108,7 +117,15 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
         const double body = v[1];
         if (body != std::floor(body) || body < 0.0)
         {
-            fail(source, line, "body must be a whole number >= 0, got " + std::to_string(body));
+            fail(source, line, "body must be a whole number >= 0, got " + numberText(body));
+        }
+        if (body > static_cast<double>(nextBody))
+        {
+            // never the body expected, and perhaps too large for a size_t: refused before converting
+            const std::size_t expected = countKnown && nextBody == trajectory.bodyCount ? 0 : nextBody;
+            fail(source, line,
+                 "expected body " + std::to_string(expected) + " (each sample lists bodies 0, 1, ... in order), got " +
+                     numberText(body));
         }
         const auto index = static_cast<std::size_t>(body);
         const double t = v[0];

@@ -14,6 +14,8 @@ template <class... Fs> struct Overloaded : Fs...
 {
     using Fs::operator()...;
 };
+// clang before 17 deduces no aggregate's template arguments without a guide
+template <class... Fs> Overloaded(Fs...) -> Overloaded<Fs...>;
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 Real capsuleVolume(const Capsule& c)

@@ -2,6 +2,7 @@
 // Preparing a solid mesh: welding, validation, mass properties and body frame; the hierarchy, grid,
 // feature edges and vertex clusters are the queries' (mesh_queries.cpp).
 #include "geometry/mesh_queries.hpp"
+#include "geometry/signed_distance_grid.hpp"
 
 #include <impulse/mesh.hpp>
 
@@ -299,6 +300,15 @@ std::shared_ptr<const MeshGeometry> MeshGeometry::build(const TriangleMesh& sour
     const int resolution = options.resolution > 0
                                ? options.resolution
                                : defaultResolution(body, (geometry->m_upper - geometry->m_lower).maxCoeff());
+    const Vec3 samples = SignedDistanceGrid::sampleCounts(geometry->m_lower, geometry->m_upper, resolution);
+    if (!(samples.prod() <= static_cast<Real>(options.maxGridSamples)))
+    {
+        std::ostringstream text;
+        text << "the signed distance grid at resolution " << resolution << " would have " << samples.x() << " x "
+             << samples.y() << " x " << samples.z() << " samples, more than the limit of " << options.maxGridSamples
+             << "; choose a coarser resolution";
+        throw MeshError(text.str());
+    }
     geometry->m_queries = std::make_unique<const MeshQueries>(*geometry, body, resolution);
     geometry->m_vertices = std::move(body.vertices);
     geometry->m_triangles = std::move(body.triangles);

@@ -14,9 +14,10 @@ SignedDistanceGrid::SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower
     const Vec3 extent = upper - lower;
     m_cell = extent.maxCoeff() / resolution;
     m_origin = lower - Vec3::Constant(kPadding * m_cell);
+    const Vec3 samples = sampleCounts(lower, upper, resolution);
     for (int axis = 0; axis < 3; ++axis)
     {
-        m_samples[axis] = static_cast<int>(std::ceil(extent[axis] / m_cell)) + 2 * kPadding + 1;
+        m_samples[axis] = static_cast<int>(samples[axis]);
     }
     m_far = m_origin + m_cell * Vec3(m_samples[0] - 1, m_samples[1] - 1, m_samples[2] - 1);
     const std::size_t total = static_cast<std::size_t>(m_samples[0]) * m_samples[1] * m_samples[2];
@@ -161,6 +162,18 @@ SignedDistanceGrid::SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower
     {
         m_phi[s] = sign[s] * distance[s];
     }
+}
+
+Vec3 SignedDistanceGrid::sampleCounts(const Vec3& lower, const Vec3& upper, int resolution)
+{
+    const Vec3 extent = upper - lower;
+    const Real cell = extent.maxCoeff() / resolution;
+    Vec3 samples;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+        samples[axis] = std::ceil(extent[axis] / cell) + 2 * kPadding + 1;
+    }
+    return samples;
 }
 
 SignedDistanceGrid::Stencil SignedDistanceGrid::stencil(const Vec3& p) const

@@ -20,6 +20,11 @@ class SignedDistanceGrid
     /// flood fill from it, so a far sample can never take the wrong side.
     SignedDistanceGrid(const TriangleBvh& bvh, const Vec3& lower, const Vec3& upper, int resolution);
 
+    /// The samples along each axis that the constructor takes for this box and resolution, so that
+    /// their number can be checked before any memory is taken; as reals, which a box too large for
+    /// double precision makes infinite or NaN rather than undefined.
+    static Vec3 sampleCounts(const Vec3& lower, const Vec3& upper, int resolution);
+
     /// What interpolation at a point reads: the eight corner values of its cell, its position in
     /// the cell, and phi there (with the way to the grid box added outside it).
     struct Stencil

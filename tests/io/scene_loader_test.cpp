@@ -582,20 +582,21 @@ namespace mesh_scenes
 {
 
 /// A scene with one mesh body whose shape object is `shape`, read relative to the shipped scenes.
-impulse::io::Scene meshScene(const std::string& shape, const std::string& pose = "\"position\": [0, 0, 1]")
+impulse::io::Scene meshScene(const std::string& shape, const std::string& pose = "\"position\": [0, 0, 1]",
+                             const impulse::io::SceneLimits& limits = {})
 {
     const std::string text = R"({"dt": 0.001, "duration": 1.0,
         "materials": {"m": {"restitution": 0.0, "friction": 0.5}},
         "bodies": [{"shape": )" +
                              shape + R"(, "material": "m", "density": 1000, )" + pose + "}]}";
-    return parseScene(text, "test.json", IMPULSE_SCENES_DIR);
+    return parseScene(text, "test.json", IMPULSE_SCENES_DIR, limits);
 }
 
-std::string meshRefusal(const std::string& shape)
+std::string meshRefusal(const std::string& shape, const impulse::io::SceneLimits& limits = {})
 {
     try
     {
-        meshScene(shape);
+        meshScene(shape, "\"position\": [0, 0, 1]", limits);
     }
     catch (const SceneError& error)
     {
@@ -667,6 +668,43 @@ TEST(SceneLoaderMesh, BrokenMeshesAndFieldsAreRefusedNamingTheFieldAndTheProblem
         contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "resolution": 5000})"), "at most 1024"));
     EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj", "radius": 1})"), "unknown field"));
     EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh"})"), "/file: missing"));
+}
+
+// A grid fine enough to take gigabytes (the L-block at 1024 cells: 1031 x 519 x 370 samples, some
+// 6 GB) is refused before any of it is taken, and quickly.
+TEST(SceneLoaderMesh, AGridBeyondTheSampleLimitIsRefusedBeforeItIsBuilt)
+{
+    const std::string fine = meshRefusal(R"({"type": "mesh", "file": "meshes/l_block.obj", "resolution": 1024})");
+    EXPECT_EQ(fine.rfind("test.json: /bodies/0/shape/file: ", 0), 0u) << fine;
+    EXPECT_TRUE(contains(fine, "the signed distance grid at resolution 1024 would have 1031 x ")) << fine;
+    EXPECT_TRUE(contains(fine, "more than the limit of 16777216; choose a coarser resolution")) << fine;
+    // a program can lower the limit; the default resolution of the star (32 cells) is then refused too
+    impulse::io::SceneLimits small;
+    small.maxGridSamples = 4096;
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj"})", small),
+                         "the signed distance grid at resolution 32 would have 39 x "))
+        << meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj"})", small);
+}
+
+TEST(SceneLoaderMesh, MeshFilesCanBeConfinedToTheScenesDirectory)
+{
+    impulse::io::SceneLimits inside;
+    inside.meshFilesInsideDirectory = true;
+    EXPECT_NO_THROW(meshScene(R"({"type": "mesh", "file": "meshes/star.obj"})", "\"position\": [0, 0, 1]", inside));
+    EXPECT_EQ(meshRefusal(R"({"type": "mesh", "file": "../tests/data/meshes/open_box.obj"})", inside),
+              "test.json: /bodies/0/shape/file: must be a path inside the scene's directory, got "
+              "\"../tests/data/meshes/open_box.obj\", which leaves it by \"..\"");
+    EXPECT_EQ(meshRefusal(R"({"type": "mesh", "file": "meshes/../../scenes/meshes/star.obj"})", inside)
+                  .rfind("test.json: /bodies/0/shape/file: must be a path inside the scene's directory", 0),
+              0u);
+    EXPECT_EQ(meshRefusal(R"({"type": "mesh", "file": "/etc/passwd"})", inside),
+              "test.json: /bodies/0/shape/file: must be a path inside the scene's directory, got the absolute path "
+              "\"/etc/passwd\"");
+    // without the confinement a scene may name any file, as the shipped test scenes do
+    EXPECT_TRUE(contains(meshRefusal(R"({"type": "mesh", "file": "/no/such/mesh.obj"})"), "no such file"));
+    // a NUL would cut the path short for the system: never a file name
+    EXPECT_EQ(meshRefusal(R"({"type": "mesh", "file": "meshes/star.obj\u0000.txt"})"),
+              "test.json: /bodies/0/shape/file: must not contain a NUL character");
 }
 
 } // namespace mesh_scenes

@@ -134,6 +134,36 @@ TEST(TrajectoryReader, AcceptsWindowsLineEndsAndNormalisesOrientation)
     EXPECT_EQ(trajectory.at(0, 0).orientation.w(), 1.0);
 }
 
+// Found by the trajectory fuzz target (tests/fuzz): a body number too large for an index was
+// converted to size_t before it was compared, which is undefined; it is the body expected or refused.
+TEST(TrajectoryReader, ABodyNumberBeyondAnyIndexIsRefusedNotConverted)
+{
+    const std::string row = ",0,0,1,1,0,0,0,0,0,0,0,0,0\n";
+    EXPECT_EQ(
+        refusal(kHeader + "0,0" + row + "0,1e300" + row),
+        "traj.csv: line 3: expected body 1 (each sample lists bodies 0, 1, ... in order), got 1.0000000000000001e+300");
+    EXPECT_EQ(
+        refusal(kHeader + "0,0" + row + "0,1" + row + "1,0" + row + "1,1" + row + "2,18446744073709551616" + row),
+        "traj.csv: line 6: expected body 0 (each sample lists bodies 0, 1, ... in order), got 1.8446744073709552e+19");
+    EXPECT_EQ(refusal(kHeader + "0,0.5" + row), "traj.csv: line 2: body must be a whole number >= 0, got 0.5");
+
+    const std::string path = std::string(IMPULSE_TEST_DATA_DIR) + "/fuzz/trajectory/body_number_beyond_size_t.csv";
+    try
+    {
+        impulse::io::readTrajectory(path);
+        FAIL() << "no error";
+    }
+    catch (const TrajectoryError& error)
+    {
+        EXPECT_EQ(std::string(error.what())
+                      .rfind(path + ": line 5: expected body 0 (each sample lists bodies 0, 1, "
+                                    "... in order), got 3.33333333333333",
+                             0),
+                  0u)
+            << error.what();
+    }
+}
+
 TEST(TrajectoryReader, AMissingFileIsNamed)
 {
     try

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <impulse/mesh.hpp>
 #include <impulse/world.hpp>
 
+#include <cstddef>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -42,11 +44,24 @@ struct Scene
     std::vector<MeshSource> meshSources;
 };
 
+/// What a scene may make the loader read and build beyond its own text. The defaults suit scene
+/// files a person writes; a program that loads scenes from a source it does not trust (the fuzz
+/// targets in tests/fuzz, a service) confines them further.
+struct SceneLimits
+{
+    /// Mesh files only inside the scene's directory: a `file` that is an absolute path or has a
+    /// ".." component is refused (symbolic links inside the directory are still followed).
+    bool meshFilesInsideDirectory = false;
+    /// Most samples of one mesh's signed distance grid (MeshOptions::maxGridSamples).
+    std::size_t maxGridSamples = MeshOptions{}.maxGridSamples;
+};
+
 /// Reads a scene file (docs/scene-format.md). Throws SceneError on any problem.
 Scene loadScene(const std::filesystem::path& path);
 
 /// Parses scene text; `source` names it in error messages and mesh files are found relative to
 /// `directory`.
-Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory = {});
+Scene parseScene(const std::string& text, const std::string& source, const std::filesystem::path& directory = {},
+                 const SceneLimits& limits = {});
 
 } // namespace impulse::io
