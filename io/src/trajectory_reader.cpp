@@ -159,12 +159,14 @@ Trajectory parseTrajectory(std::istream& in, const std::string& source)
         BodySample sample;
         sample.position = Vec3(v[2], v[3], v[4]);
         const Quat q(v[5], v[6], v[7], v[8]);
-        if (q.norm() < 0.5)
+        // stableNorm: the squared norm of finite components as large as 1e160 overflows
+        const double norm = q.coeffs().stableNorm();
+        if (norm < 0.5)
         {
             fail(source, line, "orientation is not a unit quaternion");
         }
         // kept bit for bit when already unit, as the writer leaves it; normalised when rounded by hand
-        sample.orientation = std::abs(q.norm() - 1.0) > 1e-9 ? q.normalized() : q;
+        sample.orientation = std::abs(norm - 1.0) > 1e-9 ? Quat(q.coeffs() / norm) : q;
         sample.linearVelocity = Vec3(v[9], v[10], v[11]);
         sample.angularVelocity = Vec3(v[12], v[13], v[14]);
         trajectory.samples.push_back(sample);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -93,6 +94,30 @@ TEST(TrajectoryReader, RefusesEachDepartureNamingTheFileAndLine)
               "traj.csv: line 3: body 1 has a different time from body 0 of its sample");
     EXPECT_EQ(refusal(kHeader + "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n"),
               "traj.csv: line 2: orientation is not a unit quaternion");
+}
+
+// Rounded by hand to four decimals, a quaternion is read as the unit quaternion it stands for.
+TEST(TrajectoryReader, NormalisesAHandRoundedQuaternion)
+{
+    const auto trajectory = parse(kHeader + "0,0,0,0,1,0.7071,0,0.7071,0,0,0,0,0,0,0\n");
+    const auto& q = trajectory.samples.at(0).orientation;
+    EXPECT_NEAR(q.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(q.w(), std::sqrt(0.5), 1e-15);
+    EXPECT_NEAR(q.y(), std::sqrt(0.5), 1e-15);
+}
+
+// A component of 5.7e160 made the squared norm overflow, and the quaternion was "normalised" to
+// zero (found by the trajectory fuzz target, kept in tests/data/fuzz/trajectory)
+TEST(TrajectoryReader, NormalisesAQuaternionWhoseSquaredNormOverflows)
+{
+    const std::string path = std::string(IMPULSE_TEST_DATA_DIR) + "/fuzz/trajectory/quaternion_norm_overflow.csv";
+    const auto trajectory = impulse::io::readTrajectory(path);
+    ASSERT_EQ(trajectory.sampleCount(), 1u);
+    const auto& q = trajectory.at(0, 0).orientation;
+    EXPECT_EQ(q.w(), 1.0);
+    EXPECT_NEAR(q.x(), -5.301 / 5.6743298e160, 1e-175);
+    EXPECT_EQ(q.y(), 0.0);
+    EXPECT_EQ(q.z(), 0.0);
 }
 
 // A run killed while writing leaves a file that stops anywhere: between two rows of a sample, or
