@@ -246,6 +246,30 @@ void ContactCache::pointsAt(std::size_t k, const PlacedShape& a, const PlacedSha
     }
 }
 
+void ContactCache::overlapsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real allowance, Real thickness,
+                              Real reach, std::vector<ContactPoint>& out, ContactScratch& scratch)
+{
+    const std::size_t first = out.size();
+    pointsAt(k, a, b, 0.0, thickness, reach, out, scratch);
+    ContactEntry& entry = m_entries[k];
+    if (entry.exact)
+    {
+        return;
+    }
+    Real deepest = 0.0;
+    for (std::size_t i = first; i < out.size(); ++i)
+    {
+        deepest = std::min(deepest, out[i].phi);
+    }
+    if (-deepest > allowance && motionSinceCapture(entry, a, b) > 0.25 * allowance)
+    {
+        out.resize(first);
+        entry.reach = reach;
+        capture(entry, a, b, thickness + reach, scratch);
+        evaluate(entry, a, b, 0.0, out);
+    }
+}
+
 void ContactCache::verify(const ContactEntry& entry, const PlacedShape& a, const PlacedShape& b, Real thickness,
                           Real motion, const std::vector<ContactPoint>& cached, ContactScratch& scratch)
 {

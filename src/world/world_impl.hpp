@@ -188,7 +188,8 @@ class WorldImpl
     void planLevels(Island& island, ThreadScratch& scratch);
     void buildRows(Island& island, ThreadScratch& scratch, const StepOptions& options, const PassSettings& settings);
     int pushOutIsland(const Island& island, ThreadScratch& scratch, const StepOptions& options);
-    /// The points of pair k at the bodies' current poses, normals turned toward `body` (one of the pair).
+    /// The overlapping points of pair k at the bodies' current poses (ContactCache::overlapsAt), normals
+    /// turned toward `body` (one of the pair).
     void pointsToward(std::uint32_t k, std::uint32_t body, const StepOptions& options, std::vector<ContactPoint>& out,
                       ContactScratch& contactScratch);
 };

@@ -493,5 +493,57 @@ TEST(ContactCache, SpherePairsAreCapturedAtEveryRefresh)
     EXPECT_NEAR(found[0].phi, -0.0005, kTol);
 }
 
+// A cached point keeps the normal and the face it was captured on. A small box hanging a centimetre
+// over the edge of a large one slides off it and drops below its top face, beside it: the cache,
+// still within its reach, says the boxes overlap by 2 mm where they are 2 cm apart. Push-out must not
+// act on that, so overlapsAt looks again whenever an overlap it would act on could be stale.
+TEST(ContactCache, OverlapsAtCapturesAnewWhereAStalePointShowsAnOverlapThatIsNotThere)
+{
+    const Shape small = Box{Vec3::Constant(0.1)};
+    const Shape large = Box{Vec3::Constant(0.5)};
+    const PlacedShape bottom = placed(large, Vec3::Zero());
+    ContactCache cache;
+    ContactScratch scratch;
+    cache.follow(std::vector<Pair>{{0, 1}}, kNeverExact);
+    // overhanging: its footprint reaches 1 cm over the top face, 1 mm above it
+    const PlacedShape hanging = placed(small, Vec3(0.59, 0.0, 0.601));
+    cache.refresh(0, hanging, bottom, kThickness, kReach, 0.0, scratch);
+    constexpr Real kAllowance = 1e-4;
+    std::vector<ContactPoint> found;
+    cache.overlapsAt(0, hanging, bottom, kAllowance, kThickness, kReach, found, scratch);
+    EXPECT_TRUE(found.empty()) << "1 mm apart, nothing overlaps";
+
+    // 3 cm further out and 3 mm lower: beside the large box, 2 cm from it, within the entry's reach
+    const PlacedShape beside = placed(small, Vec3(0.62, 0.0, 0.598));
+    ASSERT_LE(cache.motionSinceCapture(cache.entry(0), beside, bottom), kReach);
+    ASSERT_TRUE(exactPoints(beside, bottom, 0.0).empty());
+    const auto deepest = [](const std::vector<ContactPoint>& points)
+    {
+        Real phi = 0.0;
+        for (const ContactPoint& p : points)
+        {
+            phi = std::min(phi, p.phi);
+        }
+        return phi;
+    };
+    std::vector<ContactPoint> stale;
+    cache.pointsAt(0, beside, bottom, 0.0, kThickness, kReach, stale, scratch);
+    ASSERT_LT(deepest(stale), -1e-3) << "the anchored points no longer show the stale overlap this test is about";
+    cache.takeCounters();
+    found.clear();
+    cache.overlapsAt(0, beside, bottom, kAllowance, kThickness, kReach, found, scratch);
+    EXPECT_TRUE(found.empty()) << "deepest " << deepest(found);
+    EXPECT_EQ(cache.takeCounters().captures, 1);
+
+    // a real overlap, seen from the poses it was captured at, is kept without another capture
+    const PlacedShape sunk = placed(small, Vec3(0.4, 0.0, 0.598));
+    cache.refresh(0, sunk, bottom, kThickness, kReach, 0.0, scratch);
+    cache.takeCounters();
+    found.clear();
+    cache.overlapsAt(0, sunk, bottom, kAllowance, kThickness, kReach, found, scratch);
+    EXPECT_NEAR(deepest(found), -0.002, 1e-12);
+    EXPECT_EQ(cache.takeCounters().captures, 0);
+}
+
 } // namespace
 } // namespace impulse
