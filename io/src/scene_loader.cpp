@@ -200,6 +200,26 @@ class Field
         return {item(0).number(), item(1).number(), item(2).number()};
     }
 
+    // kg m^2: [Ixx, Iyy, Izz] on the shape's axes, or a whole tensor [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz],
+    // [Ixz, Iyz, Izz]]; what a tensor must satisfy is checked by World::createBody
+    Mat3 inertiaTensor() const
+    {
+        if (m_value.is_array() && m_value.size() == 3 && !m_value[0].is_array())
+        {
+            return positiveVec3().asDiagonal();
+        }
+        if (!m_value.is_array() || m_value.size() != 3)
+        {
+            fail("must be [Ixx, Iyy, Izz] or a 3 x 3 matrix of rows, in kg m^2, got " + describe(m_value));
+        }
+        Mat3 tensor;
+        for (std::size_t row = 0; row < 3; ++row)
+        {
+            tensor.row(static_cast<Eigen::Index>(row)) = item(row).vec3().transpose();
+        }
+        return tensor;
+    }
+
     Vec3 nonZeroVec3() const
     {
         const Vec3 value = vec3();
@@ -546,8 +566,8 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
     for (std::size_t i = 0; i < bodyCount; ++i)
     {
         const Field body = bodies.item(i);
-        body.requireObject({"name", "static", "shape", "material", "mass", "density", "position", "orientation",
-                            "velocity", "angular_velocity"});
+        body.requireObject({"name", "static", "shape", "material", "mass", "density", "inertia", "position",
+                            "orientation", "velocity", "angular_velocity"});
         BodyDef def;
         def.type = body.has("static") && body.at("static").boolean() ? BodyType::Static : BodyType::Dynamic;
         def.shape = readShape(body.at("shape"), meshes);
@@ -560,6 +580,8 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         {
             def.orientation = body.at("orientation").orientation();
         }
+        // the body frame a given inertia tensor is turned into: the mesh's principal axes
+        Quat shapeFrameInBody = Quat::Identity();
         if (const auto* mesh = std::get_if<Mesh>(&def.shape))
         {
             // the scene places the mesh's own frame; the body lives at its centre of mass on its
@@ -567,6 +589,7 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
             const Pose& frame = mesh->geometry->frameInMesh();
             def.position += def.orientation * frame.position;
             def.orientation = def.orientation * frame.orientation;
+            shapeFrameInBody = frame.orientation.conjugate();
         }
         if (def.type == BodyType::Dynamic)
         {
@@ -586,6 +609,11 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
             {
                 body.fail("a dynamic body needs \"mass\" or \"density\"");
             }
+            if (body.has("inertia"))
+            {
+                const Mat3 turn = shapeFrameInBody.toRotationMatrix();
+                def.inertia = turn * body.at("inertia").inertiaTensor() * turn.transpose();
+            }
             if (body.has("velocity"))
             {
                 def.linearVelocity = body.at("velocity").vec3();
@@ -597,7 +625,7 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         }
         else
         {
-            for (const char* field : {"mass", "density", "velocity", "angular_velocity"})
+            for (const char* field : {"mass", "density", "inertia", "velocity", "angular_velocity"})
             {
                 if (body.has(field))
                 {

@@ -34,6 +34,19 @@ std::string quat(const Quat& q)
     return num(q.w()) + " " + num(q.x()) + " " + num(q.y()) + " " + num(q.z());
 }
 
+// The inertia of a dynamic body as <inertial> attributes: its principal moments when its principal
+// axes are its body axes, else the whole tensor on the body axes (MuJoCo's compiler diagonalises it).
+std::string inertial(const World& world, BodyId id)
+{
+    if (world.principalAxes(id) == Mat3::Identity())
+    {
+        return "diaginertia=\"" + vec(world.principalInertia(id)) + "\"";
+    }
+    const Mat3 i = world.inertia(id);
+    return "fullinertia=\"" + num(i(0, 0)) + " " + num(i(1, 1)) + " " + num(i(2, 2)) + " " + num(i(0, 1)) + " " +
+           num(i(0, 2)) + " " + num(i(1, 2)) + "\"";
+}
+
 // A name MJCF accepts and XML needs no escaping for, unique among those already given.
 std::string uniqueName(const std::string& wanted, std::size_t index, std::set<std::string>& used)
 {
@@ -194,8 +207,8 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
         bodies << "    <body name=\"" << name << "\" pos=\"" << vec(s.position) << "\" quat=\"" << quat(s.orientation)
                << "\">\n"
                << "      <freejoint name=\"" << name << "\"/>\n"
-               << "      <inertial pos=\"0 0 0\" mass=\"" << num(world.mass(id)) << "\" diaginertia=\""
-               << vec(world.principalInertia(id)) << "\"/>\n"
+               << "      <inertial pos=\"0 0 0\" mass=\"" << num(world.mass(id)) << "\" " << inertial(world, id)
+               << "/>\n"
                << "      <geom name=\"" << name << "\" " << geom << " " << contact << "/>\n"
                << "    </body>\n";
         // the angular velocity the scene gave, not the one the world derives from L = I w: w = I^-1 L

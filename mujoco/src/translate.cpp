@@ -238,11 +238,17 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
 }
 
 // Rotation that the shape must share with the inertial frame; spheres need none.
-bool sameFrame(const mjModel* m, int geom, int body)
+// Whether a geom is centred on its body's centre of mass.
+bool centred(const mjModel* m, int geom, int body)
 {
     const Vec3 offset = vecAt(m->geom_pos + 3 * geom) - vecAt(m->body_ipos + 3 * body);
     const Real scale = std::max<Real>(1.0, m->geom_rbound[geom]);
-    if (offset.norm() > 1e-9 * scale)
+    return offset.norm() <= 1e-9 * scale;
+}
+
+bool sameFrame(const mjModel* m, int geom, int body)
+{
+    if (!centred(m, geom, body))
     {
         return false;
     }
@@ -624,6 +630,7 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         }
         const bool mesh = std::holds_alternative<Mesh>(*shape);
         Vec3 inertia = vecAt(m->body_inertia + 3 * b);
+        std::optional<Mat3> wholeTensor; // on the geom's axes, when they are not the principal axes
         Vec3 inertialPosition = vecAt(m->body_ipos + 3 * b);
         Quat inertialOrientation = quatAt(m->body_iquat + 4 * b);
         if (mesh)
@@ -654,10 +661,21 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         }
         else if (!sameFrame(m, g, b))
         {
-            problems.add("geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
-                         " is not centred on the body's centre of mass with its axes on the principal axes "
-                         "(its inertial frame)");
-            continue;
+            if (!centred(m, g, b))
+            {
+                problems.add("geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
+                             " is not centred on the body's centre of mass (its inertial frame)");
+                continue;
+            }
+            // principal axes turned from the geom's (an inertia given with products, or quat): the
+            // impulse body takes the geom's frame and the compiled inertia as a whole tensor on its axes
+            const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
+            const Mat3 compiledAxes = inertialOrientation.normalized().toRotationMatrix();
+            const Mat3 axes = geomOrientation.toRotationMatrix();
+            const Mat3 turned =
+                axes.transpose() * compiledAxes * inertia.asDiagonal() * compiledAxes.transpose() * axes;
+            wholeTensor = 0.5 * (turned + turned.transpose());
+            inertialOrientation = geomOrientation;
         }
         if (!(m->body_mass[b] > 0.0) || !((inertia.array() > 0.0).all()))
         {
@@ -684,6 +702,10 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         def.material = material;
         def.mass = m->body_mass[b];
         def.principalInertia = inertia;
+        if (wholeTensor)
+        {
+            def.inertia = *wholeTensor;
+        }
         def.position = state.position;
         def.orientation = state.orientation;
         def.linearVelocity = state.linearVelocity;

@@ -560,6 +560,47 @@ TEST(SceneLoader, StaticBodyWithMassIsRefusedWithItsPath)
     expectRefused(edited(R"("static": true,)", R"("static": true, "mass": 1,)"), "/bodies/0/mass", "static");
 }
 
+TEST(SceneLoader, StaticBodyWithInertiaIsRefusedWithItsPath)
+{
+    expectRefused(edited(R"("static": true,)", R"("static": true, "inertia": [1, 1, 1],)"), "/bodies/0/inertia",
+                  "static");
+}
+
+// ---- explicit inertia ------------------------------------------------------------------------
+
+TEST(SceneLoader, PrincipalMomentsGivenReplaceTheShapesOwn)
+{
+    // the crate's own would be m (b^2 + c^2) / 3 and so on with m = 24 kg; these are another body's
+    const auto scene =
+        parseScene(edited(R"("density": 500,)", R"("density": 500, "inertia": [0.2, 0.3, 0.4],)"), "test.json");
+    const impulse::BodyId crate = scene.dynamicBodies.at(1);
+    EXPECT_EQ(scene.world.principalInertia(crate), impulse::Vec3(0.2, 0.3, 0.4));
+    EXPECT_DOUBLE_EQ(scene.world.mass(crate), 500.0 * 0.2 * 0.4 * 0.6);
+}
+
+TEST(SceneLoader, AWholeTensorIsTheBodysInertiaOnTheShapesAxes)
+{
+    const auto scene = parseScene(edited(R"("density": 500,)", R"("density": 500,
+        "inertia": [[0.3, 0.05, 0], [0.05, 0.2, -0.02], [0, -0.02, 0.4]],)"),
+                                  "test.json");
+    impulse::Mat3 given;
+    given << 0.3, 0.05, 0.0, 0.05, 0.2, -0.02, 0.0, -0.02, 0.4;
+    EXPECT_LT((scene.world.inertia(scene.dynamicBodies.at(1)) - given).norm(), 1e-15);
+}
+
+TEST(SceneLoader, InertiaThatNoBodyCanHaveIsRefusedWithItsPath)
+{
+    const auto withInertia = [](const std::string& inertia)
+    { return edited(R"("density": 500,)", R"("density": 500, "inertia": )" + inertia + ","); };
+    // 1 + 1 < 5: no distribution of mass has these moments
+    expectRefused(withInertia("[1, 1, 5]"), "/bodies/2/inertia", "triangle");
+    expectRefused(withInertia("[0.1, 0, 0.1]"), "/bodies/2/inertia/1", "positive");
+    expectRefused(withInertia("[[0.3, 0.05, 0], [0, 0.2, 0], [0, 0, 0.4]]"), "/bodies/2/inertia", "symmetric");
+    expectRefused(withInertia("[[0.3, 0, 0], [0, 0.2, 0]]"), "/bodies/2/inertia", "3 x 3");
+    expectRefused(withInertia("[[0.3, 0, 0], [0, 0.2], [0, 0, 0.4]]"), "/bodies/2/inertia/1", "3 numbers");
+    expectRefused(withInertia(R"("heavy")"), "/bodies/2/inertia", "3 x 3");
+}
+
 // ---- numbers that are valid JSON but make a non-finite body -----------------------------------
 
 TEST(SceneLoader, DensityWhoseMassOverflowsIsRefusedWithItsPath)
@@ -614,6 +655,20 @@ TEST(SceneLoaderMesh, TheScenePlacesTheFileFrameAndTheBodyIsAtItsCentreOfMass)
     // rotated a quarter turn about z, (0.05, 0.05, 0.03) becomes (-0.05, 0.05, 0.03); float file
     EXPECT_LT((state.position - impulse::Vec3(0.95, 2.05, 3.03)).norm(), 1e-8) << state.position.transpose();
     EXPECT_NEAR(scene.world.mass(scene.dynamicBodies.at(0)), 1000.0 * 3 * 0.06 * 0.06 * 0.06, 1e-6);
+}
+
+TEST(SceneLoaderMesh, AnInertiaGivenOnTheFilesAxesIsTurnedOntoTheBodysPrincipalAxes)
+{
+    // the L-block's principal axes are not its file's; the tensor given on the file's axes must be
+    // the body's, seen in the world, when the file frame is the world frame
+    const auto scene =
+        meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj"})",
+                  R"("position": [0, 0, 1], "inertia": [[0.003, 0.0004, 0], [0.0004, 0.002, 0], [0, 0, 0.004]])");
+    const impulse::BodyId body = scene.dynamicBodies.at(0);
+    const impulse::Mat3 turn = scene.world.state(body).orientation.toRotationMatrix();
+    impulse::Mat3 given;
+    given << 0.003, 0.0004, 0.0, 0.0004, 0.002, 0.0, 0.0, 0.0, 0.004;
+    EXPECT_LT((turn * scene.world.inertia(body) * turn.transpose() - given).norm(), 1e-15);
 }
 
 TEST(SceneLoaderMesh, ScaleAndResolutionAreApplied)

@@ -633,6 +633,49 @@ TEST(ExportRoundTrip, OffCentreScaledMeshes)
               std::string::npos);
 }
 
+// An inertia whose principal axes are not the geom's (products of inertia, as a real crate with its
+// load to one side has): MuJoCo's compiler diagonalises it, and the translation puts the whole
+// tensor back on the geom's axes; the export writes it as fullinertia, and it comes back.
+TEST(InertiaTensor, ProductsOfInertiaSurviveTranslationAndExport)
+{
+    const char* const model = R"(<mujoco>
+  <worldbody>
+    <body name="crate" pos="0 0 1" quat="0.9 0.1 0.3 0.2">
+      <freejoint/>
+      <inertial pos="0 0 0" mass="2" fullinertia="0.03 0.02 0.04 0.005 0 -0.002"/>
+      <geom name="crate" type="box" size="0.1 0.15 0.2"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+    Mat3 given;
+    given << 0.03, 0.005, 0.0, 0.005, 0.02, -0.002, 0.0, -0.002, 0.04;
+    const ModelPtr loaded = loadModelFromString(model, "crate");
+    const DataPtr data(mj_makeData(loaded.get()));
+    mj_forward(loaded.get(), data.get());
+    const Translation t = translate(loaded.get(), data.get(), "crate");
+    ASSERT_EQ(t.dynamicBodies.size(), 1u);
+    // MuJoCo's compiler diagonalises with an iterative eigen-solver, to about 1e-10 of the largest
+    // moment (0.04); dropping the products would be off by 0.005
+    constexpr Real kCompiled = 1e-9 * 0.04;
+    EXPECT_LT((t.world.inertia(t.dynamicBodies[0]) - given).cwiseAbs().maxCoeff(), kCompiled)
+        << t.world.inertia(t.dynamicBodies[0]);
+
+    const char* const scene = R"({"name": "crate", "dt": 0.001, "duration": 1.0,
+ "materials": {"default": {"restitution": 0.1, "friction": 0.5}},
+ "bodies": [{"name": "crate", "shape": {"type": "box", "half_extents": [0.1, 0.15, 0.2]}, "mass": 2,
+   "inertia": [[0.03, 0.005, 0], [0.005, 0.02, -0.002], [0, -0.002, 0.04]], "position": [0, 0, 1],
+   "angular_velocity": [1, 2, 3], "material": "default"}]})";
+    const io::Scene original = io::parseScene(scene, "crate");
+    ASSERT_NE(exportMjcf(original).find("fullinertia="), std::string::npos);
+    const Loaded exported = loadExported(original);
+    const Translation back = translate(exported.model.get(), exported.data.get(), "exported");
+    ASSERT_EQ(back.dynamicBodies.size(), 1u);
+    EXPECT_LT((back.world.inertia(back.dynamicBodies[0]) - given).cwiseAbs().maxCoeff(), kCompiled);
+    // L = I w with the same w: off by what the tensor is
+    const Vec3 momentum = original.world.state(original.dynamicBodies[0]).angularMomentum;
+    EXPECT_LT((back.world.state(back.dynamicBodies[0]).angularMomentum - momentum).norm(), 1e-9 * momentum.norm());
+}
+
 TEST(MeshGeoms, ExportWithoutTheMeshFileIsRefused)
 {
     io::Scene scene = test::loadReferenceScene("ring_on_peg");
