@@ -259,26 +259,38 @@ def rotate(q, v):
     return (v[0] + w * tx + y * tz - z * ty, v[1] + w * ty + z * tx - x * tz, v[2] + w * tz + x * ty - y * tx)
 
 
+def layered_height(n, per_row, spacing):
+    """The walls' height for n bodies dropped in layers of per_row x per_row from z = 0.3."""
+    per_layer = per_row * per_row
+    layers = (n + per_layer - 1) // per_layer
+    return 0.3 + spacing * (layers - 1) + 1.0
+
+
+def walled_box(inner, height):
+    """Four static walls 0.2 m thick around the square |x|, |y| < inner, `height` tall."""
+    return [box(name, half, centre, static=True) for name, half, centre in (
+        ("wall_x_minus", [0.1, inner + 0.2, height / 2], [-(inner + 0.1), 0, height / 2]),
+        ("wall_x_plus", [0.1, inner + 0.2, height / 2], [inner + 0.1, 0, height / 2]),
+        ("wall_y_minus", [inner, 0.1, height / 2], [0, -(inner + 0.1), height / 2]),
+        ("wall_y_plus", [inner, 0.1, height / 2], [0, inner + 0.1, height / 2]))]
+
+
+def jittered_slot(k, per_row, spacing, rng):
+    """Body k's drop position: layers of per_row x per_row slots from z = 0.3, x and y jittered by 2 cm."""
+    layer, slot = divmod(k, per_row * per_row)
+    row, column = divmod(slot, per_row)
+    return [(column - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
+            (row - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
+            0.3 + spacing * layer]
+
+
 def nonconvex_pile(n):
     rng = random.Random(14)
     pieces = ["small_torus.obj", "l_block.obj", "star.obj", "dumbbell.obj", "gear.stl"]
     per_row, spacing = 8, 0.25
-    per_layer = per_row * per_row
-    layers = (n + per_layer - 1) // per_layer
-    top = 0.3 + spacing * (layers - 1)
-    height = top + 1.0
-    bodies = [GROUND]
-    for name, half, centre in (("wall_x_minus", [0.1, 1.2, height / 2], [-1.1, 0, height / 2]),
-                               ("wall_x_plus", [0.1, 1.2, height / 2], [1.1, 0, height / 2]),
-                               ("wall_y_minus", [1.0, 0.1, height / 2], [0, -1.1, height / 2]),
-                               ("wall_y_plus", [1.0, 0.1, height / 2], [0, 1.1, height / 2])):
-        bodies.append(box(name, half, centre, static=True))
+    bodies = [GROUND] + walled_box(1.0, layered_height(n, per_row, spacing))
     for k in range(n):
-        layer, slot = divmod(k, per_layer)
-        row, column = divmod(slot, per_row)
-        position = [(column - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
-                    (row - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
-                    0.3 + spacing * layer]
+        position = jittered_slot(k, per_row, spacing, rng)
         piece = pieces[k % len(pieces)]
         orientation = random_unit_quaternion(rng)
         # the scene places a mesh's file frame: put the middle of each piece's box at the slot
@@ -337,17 +349,8 @@ def mixed_pile(n, meshes):
     rng = random.Random(35)
     pieces = ["small_torus.obj", "l_block.obj", "star.obj", "dumbbell.obj", "gear.stl"]
     per_row, spacing = 10, 0.4
-    per_layer = per_row * per_row
-    layers = (n + per_layer - 1) // per_layer
-    top = 0.3 + spacing * (layers - 1)
-    height = top + 1.0
     materials = {"default": {"restitution": 0.0, "friction": 0.5}}
-    bodies = [GROUND]
-    for name, half, centre in (("wall_x_minus", [0.1, 2.2, height / 2], [-2.1, 0, height / 2]),
-                               ("wall_x_plus", [0.1, 2.2, height / 2], [2.1, 0, height / 2]),
-                               ("wall_y_minus", [2.0, 0.1, height / 2], [0, -2.1, height / 2]),
-                               ("wall_y_plus", [2.0, 0.1, height / 2], [0, 2.1, height / 2])):
-        bodies.append(box(name, half, centre, static=True))
+    bodies = [GROUND] + walled_box(2.0, layered_height(n, per_row, spacing))
     # every fourth body of the first 4 * meshes is a mesh; the rest cycle sphere, cube, capsule
     kinds = []
     for k in range(n):
@@ -356,11 +359,7 @@ def mixed_pile(n, meshes):
         else:
             kinds.append(("sphere", "cube", "capsule")[len([x for x in kinds if x != "mesh"]) % 3])
     for k in range(n):
-        layer, slot = divmod(k, per_layer)
-        row, column = divmod(slot, per_row)
-        position = [(column - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
-                    (row - (per_row - 1) / 2) * spacing + rng.uniform(-0.02, 0.02),
-                    0.3 + spacing * layer]
+        position = jittered_slot(k, per_row, spacing, rng)
         orientation = random_unit_quaternion(rng)
         material = f"body{k}"
         materials[material] = {"restitution": round(rng.uniform(0.0, 0.8), 3),
