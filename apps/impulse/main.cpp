@@ -2,6 +2,7 @@
 // The impulse command-line tool.
 #include "bench_command.hpp"
 #include "option_checks.hpp"
+#include "replay_command.hpp"
 #include "run_command.hpp"
 #ifdef IMPULSE_HAVE_MUJOCO
 #include "mujoco_commands.hpp"
@@ -68,6 +69,7 @@ int main(int argc, char** argv)
 
     const impulse::app::SeeCommands see(app);
     const impulse::app::BenchCommand bench(app);
+    const impulse::app::ReplayCommand replay(app);
 
 #ifdef IMPULSE_HAVE_MUJOCO
     std::string exportScene;
@@ -103,6 +105,10 @@ int main(int argc, char** argv)
         return code == 0 ? 0 : 2;
     }
     if (const std::optional<int> code = see.runChosen())
+    {
+        return *code;
+    }
+    if (const std::optional<int> code = replay.runChosen())
     {
         return *code;
     }

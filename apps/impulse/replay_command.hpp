@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+// impulse replay: measured trajectories simulated again from their first sample and compared.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace impulse::app
+{
+
+/// What `impulse replay` was asked to do.
+struct ReplayOptions
+{
+    /// Measured trajectory files (.csv, or .csv.gz), or directories whose .csv and .csv.gz files
+    /// are all taken (in name order).
+    std::vector<std::string> measured;
+    std::string scenePath;      ///< the template: its first dynamic body is replayed, the rest are static
+    std::string jsonPath;       ///< empty: no JSON file; "-": the JSON on standard output instead of the table
+    std::optional<double> size; ///< m, what the position error is measured in; unset: the body's (bodySize)
+    int jobs = 0;               ///< trajectories replayed at once; 0: one per hardware thread
+    bool progress = true;       ///< a progress line on standard error, when it is a terminal
+};
+
+/// Replays every measured trajectory and prints the table (and writes the JSON). Returns the exit
+/// code: 0, or 2 for a template, a measured file or an option that cannot be used.
+int runReplay(const ReplayOptions& options);
+
+/// Registers `replay` on the application; options are bound to its members, so it stays where it
+/// was built.
+class ReplayCommand
+{
+  public:
+    explicit ReplayCommand(CLI::App& app);
+    ReplayCommand(const ReplayCommand&) = delete;
+    ReplayCommand& operator=(const ReplayCommand&) = delete;
+
+    /// After parsing: the exit code of `replay` if it was the subcommand chosen.
+    std::optional<int> runChosen() const;
+
+  private:
+    ReplayOptions m_options;
+    bool m_noProgress = false;
+    CLI::App* m_command = nullptr;
+};
+
+} // namespace impulse::app
