@@ -10,6 +10,7 @@ packages=(
   libcli11-dev         # command line
   libassimp-dev        # mesh files (OBJ, STL)
   zlib1g-dev           # impulse replay reads gzipped measured trajectories
+  libnlopt-dev         # impulse fit: derivative-free optimisation (Subplex)
   libpng-dev           # PNG frames and pictures (impulse render), decoded again by the tests
   gnuplot-nox          # impulse plot draws with gnuplot, headless (pngcairo)
   libjs-three          # three.js and its OrbitControls, inlined into impulse view's page

@@ -70,6 +70,7 @@ int main(int argc, char** argv)
     const impulse::app::SeeCommands see(app);
     const impulse::app::BenchCommand bench(app);
     const impulse::app::ReplayCommand replay(app);
+    const impulse::app::FitCommand fit(app);
 
 #ifdef IMPULSE_HAVE_MUJOCO
     std::string exportScene;
@@ -109,6 +110,10 @@ int main(int argc, char** argv)
         return *code;
     }
     if (const std::optional<int> code = replay.runChosen())
+    {
+        return *code;
+    }
+    if (const std::optional<int> code = fit.runChosen())
     {
         return *code;
     }

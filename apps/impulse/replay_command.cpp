@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlopt.h>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -155,67 +156,94 @@ std::string summaryLine(const io::ErrorSummary& summary, int decimals)
            fixed(summary.median, decimals) + ", 90th percentile " + fixed(summary.percentile90, decimals);
 }
 
-} // namespace
-
-int runReplay(const ReplayOptions& options)
+/// The measurements and the template of a replay or a fit, all read and checked.
+struct Batch
 {
     std::vector<fs::path> files;
-    std::string templateText;
-    io::Scene scene;
-    BodyId body;
-    Real size = 0.0;
-    try
-    {
-        files = measuredFiles(options.measured);
-        templateText = readText(options.scenePath);
-        scene = io::parseScene(templateText, options.scenePath, fs::path(options.scenePath).parent_path());
-        body = replayedBody(scene, options.scenePath);
-        size = options.size ? *options.size : io::bodySize(scene.world.shape(body));
-    }
-    catch (const std::exception& error)
-    {
-        std::cerr << "impulse: " << error.what() << "\n";
-        return 2;
-    }
-    const fs::path directory = fs::path(options.scenePath).parent_path();
-
-    // every trajectory is read before any is replayed, so that a bad file stops the batch at once
     std::vector<io::Trajectory> measured;
-    measured.reserve(files.size());
-    try
+    std::string scenePath;
+    std::string templateText;
+    fs::path directory;
+    io::Scene scene; ///< the template, for its names and options
+    BodyId body;     ///< the replayed body
+    Real size = 0.0; ///< m
+};
+
+/// Reads the template and every measurement; throws with the file named on the first that cannot
+/// be used, so that a bad file stops the batch before anything is simulated.
+Batch loadBatch(const std::vector<std::string>& measuredArguments, const std::string& scenePath,
+                std::optional<double> size)
+{
+    Batch batch;
+    batch.files = measuredFiles(measuredArguments);
+    batch.scenePath = scenePath;
+    batch.templateText = readText(scenePath);
+    batch.directory = fs::path(scenePath).parent_path();
+    batch.scene = io::parseScene(batch.templateText, scenePath, batch.directory);
+    batch.body = replayedBody(batch.scene, scenePath);
+    batch.size = size ? *size : io::bodySize(batch.scene.world.shape(batch.body));
+    batch.measured.reserve(batch.files.size());
+    for (const fs::path& file : batch.files)
     {
-        for (const fs::path& file : files)
+        batch.measured.push_back(readMeasured(file));
+        if (batch.measured.back().sampleCount() < 2)
         {
-            measured.push_back(readMeasured(file));
-            if (measured.back().sampleCount() < 2)
-            {
-                throw ReplayRefusal(file.string() + ": a measurement needs at least two samples");
-            }
+            throw ReplayRefusal(file.string() + ": a measurement needs at least two samples");
         }
     }
-    catch (const std::exception& error)
-    {
-        std::cerr << "impulse: " << error.what() << "\n";
-        return 2;
-    }
+    return batch;
+}
 
-    // each worker replays whole trajectories in its own copy of the template: the results do not
-    // depend on how many run at once
-    std::vector<io::ReplayError> results(files.size());
-    std::vector<std::string> failures(files.size());
+/// Restitution and friction between the replayed body and every static body, in place of the
+/// template's materials; unset: the template's own.
+using Contact = std::optional<PairCoefficients>;
+
+/// The template's coefficients between the replayed body and its first static body.
+PairCoefficients templateContact(const Batch& batch)
+{
+    const World& world = batch.scene.world;
+    for (std::uint32_t i = 0; i < world.bodyCount(); ++i)
+    {
+        if (!world.isDynamic(BodyId{i}))
+        {
+            return world.pairCoefficients(world.material(batch.body), world.material(BodyId{i}));
+        }
+    }
+    throw ReplayRefusal(batch.scenePath + ": a template needs a static body for the measured one to land on");
+}
+
+/// Replays every measurement, `jobs` at a time, each in its own copy of the template: the results
+/// do not depend on how many run at once. Throws the first failure, with its file named.
+std::vector<io::ReplayError> replayBatch(const Batch& batch, const Contact& contact, int jobsAsked, bool progressShown)
+{
+    const std::size_t count = batch.files.size();
+    std::vector<io::ReplayError> results(count);
+    std::vector<std::string> failures(count);
     std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> done{0};
     const auto work = [&]
     {
-        for (std::size_t i = next++; i < files.size(); i = next++)
+        for (std::size_t i = next++; i < count; i = next++)
         {
             try
             {
-                io::Scene copy = io::parseScene(templateText, options.scenePath, directory);
+                io::Scene copy = io::parseScene(batch.templateText, batch.scenePath, batch.directory);
+                const BodyId body = replayedBody(copy, batch.scenePath);
+                if (contact)
+                {
+                    for (std::uint32_t k = 0; k < copy.world.bodyCount(); ++k)
+                    {
+                        if (!copy.world.isDynamic(BodyId{k}))
+                        {
+                            copy.world.setPairCoefficients(copy.world.material(body), copy.world.material(BodyId{k}),
+                                                           *contact);
+                        }
+                    }
+                }
                 StepOptions stepOptions = copy.options;
                 stepOptions.threads = 1;
-                results[i] = io::replay(copy.world, replayedBody(copy, options.scenePath), stepOptions, measured[i],
-                                        size, files[i].string());
+                results[i] =
+                    io::replay(copy.world, body, stepOptions, batch.measured[i], batch.size, batch.files[i].string());
             }
             catch (const std::exception& error)
             {
@@ -226,34 +254,59 @@ int runReplay(const ReplayOptions& options)
     };
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t jobs =
-        std::min<std::size_t>(options.jobs > 0 ? static_cast<std::size_t>(options.jobs) : hardware, files.size());
+        std::min<std::size_t>(jobsAsked > 0 ? static_cast<std::size_t>(jobsAsked) : hardware, count);
     std::vector<std::thread> workers;
     for (std::size_t j = 0; j < jobs; ++j)
     {
         workers.emplace_back(work);
     }
-    Progress progress(options.progress && stderrIsTerminal(), "trajectories");
-    const Clock::time_point start = Clock::now();
-    while (done.load() < files.size())
+    if (progressShown)
     {
-        const Clock::time_point now = Clock::now();
-        progress.update("replay", static_cast<long long>(done.load()), static_cast<long long>(files.size()), "",
-                        now - start, now);
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        Progress progress(true, "trajectories");
+        const Clock::time_point start = Clock::now();
+        while (done.load() < count)
+        {
+            const Clock::time_point now = Clock::now();
+            progress.update("replay", static_cast<long long>(done.load()), static_cast<long long>(count), "",
+                            now - start, now);
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        progress.clear();
     }
     for (std::thread& worker : workers)
     {
         worker.join();
     }
-    progress.clear();
-    for (std::size_t i = 0; i < files.size(); ++i)
+    for (const std::string& failure : failures)
     {
-        if (!failures[i].empty())
+        if (!failure.empty())
         {
-            std::cerr << "impulse: " << failures[i] << "\n";
-            return 2;
+            throw ReplayRefusal(failure);
         }
     }
+    return results;
+}
+
+} // namespace
+
+int runReplay(const ReplayOptions& options)
+{
+    Batch batch;
+    std::vector<io::ReplayError> results;
+    try
+    {
+        batch = loadBatch(options.measured, options.scenePath, options.size);
+        results = replayBatch(batch, std::nullopt, options.jobs, options.progress && stderrIsTerminal());
+    }
+    catch (const std::exception& error)
+    {
+        std::cerr << "impulse: " << error.what() << "\n";
+        return 2;
+    }
+    const io::Scene& scene = batch.scene;
+    const BodyId body = batch.body;
+    const Real size = batch.size;
+    const std::vector<fs::path>& files = batch.files;
 
     std::vector<Real> positions;
     std::vector<Real> rotations;
@@ -324,6 +377,227 @@ int runReplay(const ReplayOptions& options)
     return 0;
 }
 
+namespace
+{
+
+/// One evaluation of a fit: the mean errors over the set at one friction and restitution.
+struct FitPoint
+{
+    Real friction = 0.0;
+    Real restitution = 0.0;
+    Real position = 0.0;  ///< mean position error, % of size
+    Real rotation = 0.0;  ///< mean rotation error, degrees
+    Real objective = 0.0; ///< what the fit minimises
+};
+
+nlohmann::json pointJson(const FitPoint& point)
+{
+    return {{"friction", point.friction},
+            {"restitution", point.restitution},
+            {"position", point.position},
+            {"rotation", point.rotation},
+            {"objective", point.objective}};
+}
+
+} // namespace
+
+int runFit(const FitOptions& options)
+{
+    Batch batch;
+    PairCoefficients start;
+    try
+    {
+        batch = loadBatch(options.measured, options.scenePath, options.size);
+        start = templateContact(batch);
+    }
+    catch (const std::exception& error)
+    {
+        std::cerr << "impulse: " << error.what() << "\n";
+        return 2;
+    }
+    // friction in [0, 2], restitution in [0, 1]
+    constexpr double kLower[2] = {0.0, 0.0};
+    constexpr double kUpper[2] = {2.0, 1.0};
+    const auto evaluate = [&](Real friction, Real restitution)
+    {
+        FitPoint point{friction, restitution};
+        const std::vector<io::ReplayError> results =
+            replayBatch(batch, PairCoefficients{restitution, friction}, options.jobs, false);
+        for (const io::ReplayError& result : results)
+        {
+            point.position += result.positionError;
+            point.rotation += result.rotationError;
+        }
+        point.position /= static_cast<Real>(results.size());
+        point.rotation /= static_cast<Real>(results.size());
+        point.objective = options.objective == "position"   ? point.position
+                          : options.objective == "rotation" ? point.rotation
+                                                            : point.position + point.rotation;
+        return point;
+    };
+
+    // Subplex (NLopt's LN_SBPLX): derivative-free, since a replay's error is not smooth in the
+    // parameters (a cube that tips over or not), and deterministic, with no random restarts
+    struct State
+    {
+        const decltype(evaluate)* run;
+        int count = 0;
+        int budget = 0;
+        std::string failure;
+        Progress* progress;
+        Clock::time_point started;
+    };
+    Progress progress(options.progress && stderrIsTerminal(), "replays of the set");
+    State state{&evaluate, 0, options.evaluations, {}, &progress, Clock::now()};
+    const auto objective = [](unsigned, const double* x, double*, void* data) -> double
+    {
+        auto& s = *static_cast<State*>(data);
+        try
+        {
+            const FitPoint point = (*s.run)(x[0], x[1]);
+            ++s.count;
+            const Clock::time_point now = Clock::now();
+            s.progress->update("fit", s.count, s.budget, "", now - s.started, now);
+            return point.objective;
+        }
+        catch (const std::exception& error)
+        {
+            s.failure = error.what();
+            throw; // NLopt stops on a C++ exception and rethrows it from nlopt_optimize
+        }
+    };
+    FitPoint before;
+    FitPoint after;
+    nlopt_result outcome = NLOPT_FAILURE;
+    double x[2] = {std::clamp(start.friction, kLower[0], kUpper[0]),
+                   std::clamp(start.restitution, kLower[1], kUpper[1])};
+    try
+    {
+        before = evaluate(x[0], x[1]);
+        // The error is kinked where a contact changes its mode, and a simplex can stall against a
+        // kink short of the minimum: the search starts again from the best point with a step five
+        // times smaller, three times in all, within the one budget of evaluations.
+        for (const double stepSize : {0.05, 0.01, 0.002})
+        {
+            const int left = options.evaluations - state.count;
+            if (left <= 0)
+            {
+                break;
+            }
+            nlopt_opt optimiser = nlopt_create(NLOPT_LN_SBPLX, 2);
+            nlopt_set_lower_bounds(optimiser, kLower);
+            nlopt_set_upper_bounds(optimiser, kUpper);
+            nlopt_set_min_objective(optimiser, +objective, &state);
+            const double step[2] = {stepSize, stepSize};
+            nlopt_set_initial_step(optimiser, step);
+            nlopt_set_xtol_abs1(optimiser, 1e-4);
+            nlopt_set_maxeval(optimiser, left);
+            double best = 0.0;
+            outcome = nlopt_optimize(optimiser, x, &best);
+            nlopt_destroy(optimiser);
+            if (outcome < 0)
+            {
+                break;
+            }
+        }
+        progress.clear();
+        if (!state.failure.empty() || outcome < 0)
+        {
+            throw ReplayRefusal(state.failure.empty() ? "the optimiser failed (NLopt code " +
+                                                            std::to_string(static_cast<int>(outcome)) + ")"
+                                                      : state.failure);
+        }
+        after = evaluate(x[0], x[1]);
+    }
+    catch (const std::exception& error)
+    {
+        progress.clear();
+        std::cerr << "impulse: " << error.what() << "\n";
+        return 2;
+    }
+
+    // how much worse the fit gets when a parameter moves by 0.02 either way (within its bounds)
+    constexpr Real kNudge = 0.02;
+    struct Sensitivity
+    {
+        std::string parameter;
+        Real below = 0.0; ///< objective change at the value less kNudge
+        Real above = 0.0;
+    };
+    std::vector<Sensitivity> sensitivities;
+    for (int p = 0; p < 2; ++p)
+    {
+        Sensitivity s{p == 0 ? "friction" : "restitution"};
+        for (const Real sign : {-1.0, 1.0})
+        {
+            double moved[2] = {after.friction, after.restitution};
+            moved[p] = std::clamp(moved[p] + sign * kNudge, kLower[p], kUpper[p]);
+            const Real change = evaluate(moved[0], moved[1]).objective - after.objective;
+            (sign < 0.0 ? s.below : s.above) = change;
+        }
+        sensitivities.push_back(s);
+    }
+
+    const char* stopped = outcome == NLOPT_XTOL_REACHED      ? "the parameters converged to 1e-4"
+                          : outcome == NLOPT_MAXEVAL_REACHED ? "the evaluation budget ran out"
+                                                             : "the objective stopped changing";
+    const std::string objectiveName = options.objective == "position"   ? "mean position error (% of size)"
+                                      : options.objective == "rotation" ? "mean rotation error (degrees)"
+                                                                        : "mean position error (% of size) + "
+                                                                          "mean rotation error (degrees)";
+    nlohmann::json json;
+    json["scene"] = options.scenePath;
+    json["trajectories"] = batch.files.size();
+    json["objective"] = options.objective;
+    json["optimiser"] = "NLopt LN_SBPLX";
+    json["evaluations"] = state.count;
+    json["stopped"] = stopped;
+    json["before"] = pointJson(before);
+    json["after"] = pointJson(after);
+    json["sensitivity"] = nlohmann::json::object();
+    for (const Sensitivity& s : sensitivities)
+    {
+        json["sensitivity"][s.parameter] = {{"step", kNudge}, {"below", s.below}, {"above", s.above}};
+    }
+    if (options.jsonPath == "-")
+    {
+        std::cout << json.dump(2) << "\n";
+        return 0;
+    }
+    if (!options.jsonPath.empty())
+    {
+        std::ofstream out(options.jsonPath);
+        out << json.dump(2) << "\n";
+        if (!out)
+        {
+            std::cerr << "impulse: " << options.jsonPath << ": cannot write\n";
+            return 1;
+        }
+    }
+    std::cout << "fit of friction and restitution to " << batch.files.size() << " measured trajectories with "
+              << options.scenePath << "\nminimising " << objectiveName << "\n";
+    std::cout << "optimiser: NLopt Subplex (LN_SBPLX), restarted with smaller steps, " << state.count
+              << " evaluations; the last search stopped because " << stopped << "\n\n";
+    char line[256];
+    std::snprintf(line, sizeof line, "%-8s %10s %12s %11s %13s %10s\n", "", "friction", "restitution", "position %",
+                  "rotation deg", "objective");
+    std::cout << line;
+    for (const auto& [name, point] : {std::pair{"before", before}, std::pair{"after", after}})
+    {
+        std::snprintf(line, sizeof line, "%-8s %10.4f %12.4f %11.2f %13.2f %10.2f\n", name, point.friction,
+                      point.restitution, point.position, point.rotation, point.objective);
+        std::cout << line;
+    }
+    std::cout << "\nsensitivity: the objective's change when a parameter moves by " << kNudge << "\n";
+    for (const Sensitivity& s : sensitivities)
+    {
+        std::snprintf(line, sizeof line, "%-12s -%.2f: %+8.3f   +%.2f: %+8.3f\n", s.parameter.c_str(), kNudge, s.below,
+                      kNudge, s.above);
+        std::cout << line;
+    }
+    return 0;
+}
+
 ReplayCommand::ReplayCommand(CLI::App& app)
 {
     m_command =
@@ -366,6 +640,49 @@ std::optional<int> ReplayCommand::runChosen() const
     ReplayOptions options = m_options;
     options.progress = !m_noProgress;
     return runReplay(options);
+}
+
+FitCommand::FitCommand(CLI::App& app)
+{
+    m_command =
+        app.add_subcommand("fit", "Fit friction and restitution to measured trajectories: the values whose replay "
+                                  "(impulse replay) comes closest to them");
+    m_command->add_option("measured", m_options.measured, "Measured trajectory files or directories, as for replay")
+        ->required();
+    m_command
+        ->add_option("--scene", m_options.scenePath,
+                     "Template scene, as for replay; its coefficients between the body and its static bodies are "
+                     "where the fit starts")
+        ->required();
+    m_command
+        ->add_option("--objective", m_options.objective,
+                     "What is minimised: sum (mean position error in % plus mean rotation error in degrees), "
+                     "position or rotation")
+        ->check(CLI::IsMember({"sum", "position", "rotation"}))
+        ->capture_default_str();
+    m_command->add_option("--max-evaluations", m_options.evaluations, "Replays of the whole set at most")
+        ->check(wholeNumber(1, 100000))
+        ->capture_default_str();
+    m_command->add_option("--json", m_options.jsonPath,
+                          "Also write the figures as JSON to this file; \"-\": print the JSON instead of the table");
+    m_command->add_option("--size", m_options.size, "Length the position error is measured in, m, as for replay")
+        ->check(positiveNumber());
+    m_command->add_option("--jobs", m_options.jobs, "Trajectories replayed at once (0: one per hardware thread)")
+        ->check(wholeNumber(0, 65536))
+        ->capture_default_str();
+    m_command->add_flag("--no-progress", m_noProgress,
+                        "No progress line (it is drawn on standard error only when that is a terminal)");
+}
+
+std::optional<int> FitCommand::runChosen() const
+{
+    if (!m_command->parsed())
+    {
+        return std::nullopt;
+    }
+    FitOptions options = m_options;
+    options.progress = !m_noProgress;
+    return runFit(options);
 }
 
 } // namespace impulse::app

@@ -28,6 +28,24 @@ struct ReplayOptions
 /// code: 0, or 2 for a template, a measured file or an option that cannot be used.
 int runReplay(const ReplayOptions& options);
 
+/// What `impulse fit` was asked to do: the measurements and template as for replay.
+struct FitOptions
+{
+    std::vector<std::string> measured;
+    std::string scenePath;
+    std::string objective = "sum"; ///< "sum" (position % + rotation degrees), "position" or "rotation"
+    int evaluations = 200;         ///< at most this many replays of the whole set
+    std::string jsonPath;          ///< as for replay
+    std::optional<double> size;    ///< as for replay
+    int jobs = 0;                  ///< as for replay
+    bool progress = true;          ///< a progress line on standard error, when it is a terminal
+};
+
+/// Fits friction and restitution between the template's body and its static bodies to the
+/// measurements, minimising the mean replay error; prints the values, the error before and
+/// after and the sensitivity. Returns the exit code: 0, or 2 for input that cannot be used.
+int runFit(const FitOptions& options);
+
 /// Registers `replay` on the application; options are bound to its members, so it stays where it
 /// was built.
 class ReplayCommand
@@ -42,6 +60,23 @@ class ReplayCommand
 
   private:
     ReplayOptions m_options;
+    bool m_noProgress = false;
+    CLI::App* m_command = nullptr;
+};
+
+/// Registers `fit` on the application, as ReplayCommand does `replay`.
+class FitCommand
+{
+  public:
+    explicit FitCommand(CLI::App& app);
+    FitCommand(const FitCommand&) = delete;
+    FitCommand& operator=(const FitCommand&) = delete;
+
+    /// After parsing: the exit code of `fit` if it was the subcommand chosen.
+    std::optional<int> runChosen() const;
+
+  private:
+    FitOptions m_options;
     bool m_noProgress = false;
     CLI::App* m_command = nullptr;
 };

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
-# impulse replay as a user runs it: a run of impulse itself, given back as the measurement, is
-# replayed to round-off; gzipped files and directories are read; the figures are the same at any
-# number of jobs; unusable templates and measurements are refused with exit 2, naming the file.
+# impulse replay and impulse fit as a user runs them: a run of impulse itself, given back as the
+# measurement, is replayed to round-off; gzipped files and directories are read; the figures are
+# the same at any number of jobs; fit recovers the friction and restitution synthetic tosses were
+# simulated with; unusable templates and measurements are refused with exit 2, naming the file.
 #
 #   cmake -DIMPULSE=<impulse executable> -DWORK=<scratch dir> -P replay_test.cmake
 cmake_minimum_required(VERSION 3.21)
@@ -113,5 +114,35 @@ run_impulse(replay "${WORK}/empty" --scene "${toss}")
 expect_refused("a directory without measurements" "empty: no .csv or .csv.gz file")
 run_impulse(replay "${WORK}/measured/toss.csv" --scene "${WORK}/no_such.json")
 expect_refused("a missing template" "no_such.json: cannot open")
+
+# impulse fit on synthetic measurements: four tosses simulated with friction 0.35 and restitution
+# 0.4, fitted from 0.5 and 0.2, must give those values back to 1 %
+file(MAKE_DIRECTORY "${WORK}/synthetic")
+foreach(i 1 2 3 4)
+    math(EXPR angle "20 * ${i}")
+    file(WRITE "${WORK}/synthetic_${i}.json" "{\"dt\": 0.001, \"duration\": 0.8,
+ \"materials\": {\"m\": {\"restitution\": 0.4, \"friction\": 0.35}},
+ \"bodies\": [{\"static\": true, \"shape\": {\"type\": \"plane\", \"normal\": [0, 0, 1]}, \"material\": \"m\"},
+  {\"name\": \"cube\", \"shape\": {\"type\": \"box\", \"half_extents\": [0.05, 0.05, 0.05]}, \"material\": \"m\",
+   \"mass\": 0.4, \"position\": [0, 0, 0.2], \"orientation\": {\"axis\": [1, ${i}, 3], \"angle_deg\": ${angle}},
+   \"velocity\": [0.${i}, 0.3, -0.5], \"angular_velocity\": [${i}, -2, 4]}]}")
+    run_impulse(run "${WORK}/synthetic_${i}.json" --every 7 --out "${WORK}/synthetic/toss_${i}.csv")
+    expect_success()
+endforeach()
+file(READ "${WORK}/synthetic_1.json" template)
+string(REPLACE "\"restitution\": 0.4, \"friction\": 0.35" "\"restitution\": 0.2, \"friction\": 0.5" template "${template}")
+file(WRITE "${WORK}/synthetic_template.json" "${template}")
+run_impulse(fit "${WORK}/synthetic" --scene "${WORK}/synthetic_template.json" --json -)
+expect_success()
+string(JSON friction ERROR_VARIABLE json_error GET "${run_out}" after friction)
+string(JSON restitution ERROR_VARIABLE json_error GET "${run_out}" after restitution)
+if(friction GREATER_EQUAL 0.3465 AND friction LESS_EQUAL 0.3535 AND restitution GREATER_EQUAL 0.396
+   AND restitution LESS_EQUAL 0.404)
+    check_passed("fit recovers friction 0.35 and restitution 0.4 to 1 % (${friction}, ${restitution})")
+else()
+    check_failed("fit gave friction ${friction} and restitution ${restitution}, expected 0.35 and 0.4 to 1 %: ${run_err}")
+endif()
+run_impulse(fit "${WORK}/synthetic" --scene "${WORK}/two_bodies.json")
+expect_refused("fit with a template of two dynamic bodies" "two_bodies.json: a replay template has exactly one")
 
 finish_checks("replay")
