@@ -287,6 +287,58 @@ std::vector<io::ReplayError> replayBatch(const Batch& batch, const Contact& cont
     return results;
 }
 
+/// Writes `json` where --json asks: to standard output instead of the table for "-" (returns 0),
+/// or to a file beside the table (returns 1 when it cannot be written, else nothing).
+std::optional<int> writeJson(const nlohmann::json& json, const std::string& path)
+{
+    if (path == "-")
+    {
+        std::cout << json.dump(2) << "\n";
+        return 0;
+    }
+    if (!path.empty())
+    {
+        std::ofstream out(path);
+        out << json.dump(2) << "\n";
+        if (!out)
+        {
+            std::cerr << "impulse: " << path << ": cannot write\n";
+            return 1;
+        }
+    }
+    return std::nullopt;
+}
+
+/// The operands and options replay and fit share, bound to `options`.
+void addMeasurementOptions(CLI::App& command, ReplayOptions& options, bool& noProgress)
+{
+    command
+        .add_option("measured", options.measured,
+                    "Measured trajectory files (.csv or .csv.gz, the trajectory format; body 0 is compared), or "
+                    "directories of them")
+        ->required();
+    command
+        .add_option("--scene", options.scenePath,
+                    "Template scene: its one dynamic body is started from each measurement's first sample; its "
+                    "materials, its coefficients with the static bodies and its step options are used")
+        ->required();
+    command.add_option("--json", options.jsonPath,
+                       "Also write every figure as JSON to this file; \"-\": print the JSON instead of the table");
+    command
+        .add_option("--size", options.size,
+                    "Length the position error is measured in, m (default: the body's: a box's longest edge, a "
+                    "sphere's diameter)")
+        ->check(positiveNumber());
+    command
+        .add_option("--jobs", options.jobs,
+                    "Trajectories replayed at once (0: one per hardware thread); the figures are the same at any "
+                    "count")
+        ->check(wholeNumber(0, 65536))
+        ->capture_default_str();
+    command.add_flag("--no-progress", noProgress,
+                     "No progress line (it is drawn on standard error only when that is a terminal)");
+}
+
 } // namespace
 
 int runReplay(const ReplayOptions& options)
@@ -336,20 +388,9 @@ int runReplay(const ReplayOptions& options)
     }
     json["position"] = summaryJson(position);
     json["rotation"] = summaryJson(rotation);
-    if (options.jsonPath == "-")
+    if (const std::optional<int> code = writeJson(json, options.jsonPath))
     {
-        std::cout << json.dump(2) << "\n";
-        return 0;
-    }
-    if (!options.jsonPath.empty())
-    {
-        std::ofstream out(options.jsonPath);
-        out << json.dump(2) << "\n";
-        if (!out)
-        {
-            std::cerr << "impulse: " << options.jsonPath << ": cannot write\n";
-            return 1;
-        }
+        return *code;
     }
 
     std::cout << "replay of " << files.size() << " measured trajectories with " << options.scenePath << " (" << bodyName
@@ -403,11 +444,12 @@ nlohmann::json pointJson(const FitPoint& point)
 
 int runFit(const FitOptions& options)
 {
+    const ReplayOptions& shared = options.replay;
     Batch batch;
     PairCoefficients start;
     try
     {
-        batch = loadBatch(options.measured, options.scenePath, options.size);
+        batch = loadBatch(shared.measured, shared.scenePath, shared.size);
         start = templateContact(batch);
     }
     catch (const std::exception& error)
@@ -422,7 +464,7 @@ int runFit(const FitOptions& options)
     {
         FitPoint point{friction, restitution};
         const std::vector<io::ReplayError> results =
-            replayBatch(batch, PairCoefficients{restitution, friction}, options.jobs, false);
+            replayBatch(batch, PairCoefficients{restitution, friction}, shared.jobs, false);
         for (const io::ReplayError& result : results)
         {
             point.position += result.positionError;
@@ -447,7 +489,7 @@ int runFit(const FitOptions& options)
         Progress* progress;
         Clock::time_point started;
     };
-    Progress progress(options.progress && stderrIsTerminal(), "replays of the set");
+    Progress progress(shared.progress && stderrIsTerminal(), "replays of the set");
     State state{&evaluate, 0, options.evaluations, {}, &progress, Clock::now()};
     const auto objective = [](unsigned, const double* x, double*, void* data) -> double
     {
@@ -546,7 +588,7 @@ int runFit(const FitOptions& options)
                                                                         : "mean position error (% of size) + "
                                                                           "mean rotation error (degrees)";
     nlohmann::json json;
-    json["scene"] = options.scenePath;
+    json["scene"] = shared.scenePath;
     json["trajectories"] = batch.files.size();
     json["objective"] = options.objective;
     json["optimiser"] = "NLopt LN_SBPLX";
@@ -559,23 +601,12 @@ int runFit(const FitOptions& options)
     {
         json["sensitivity"][s.parameter] = {{"step", kNudge}, {"below", s.below}, {"above", s.above}};
     }
-    if (options.jsonPath == "-")
+    if (const std::optional<int> code = writeJson(json, shared.jsonPath))
     {
-        std::cout << json.dump(2) << "\n";
-        return 0;
-    }
-    if (!options.jsonPath.empty())
-    {
-        std::ofstream out(options.jsonPath);
-        out << json.dump(2) << "\n";
-        if (!out)
-        {
-            std::cerr << "impulse: " << options.jsonPath << ": cannot write\n";
-            return 1;
-        }
+        return *code;
     }
     std::cout << "fit of friction and restitution to " << batch.files.size() << " measured trajectories with "
-              << options.scenePath << "\nminimising " << objectiveName << "\n";
+              << shared.scenePath << "\nminimising " << objectiveName << "\n";
     std::cout << "optimiser: NLopt Subplex (LN_SBPLX), restarted with smaller steps, " << state.count
               << " evaluations; the last search stopped because " << stopped << "\n\n";
     char line[256];
@@ -604,31 +635,7 @@ ReplayCommand::ReplayCommand(CLI::App& app)
         app.add_subcommand("replay", "Simulate measured trajectories again from their first sample and report how far "
                                      "the simulation ends up from them (position in % of the body's size, rotation in "
                                      "degrees)");
-    m_command
-        ->add_option("measured", m_options.measured,
-                     "Measured trajectory files (.csv or .csv.gz, the trajectory format; body 0 is compared), or "
-                     "directories of them")
-        ->required();
-    m_command
-        ->add_option("--scene", m_options.scenePath,
-                     "Template scene: its one dynamic body is started from each measurement's first sample; its "
-                     "materials and step options are used")
-        ->required();
-    m_command->add_option("--json", m_options.jsonPath,
-                          "Also write every figure as JSON to this file; \"-\": print the JSON instead of the table");
-    m_command
-        ->add_option("--size", m_options.size,
-                     "Length the position error is measured in, m (default: the body's: a box's longest edge, a "
-                     "sphere's diameter)")
-        ->check(positiveNumber());
-    m_command
-        ->add_option("--jobs", m_options.jobs,
-                     "Trajectories replayed at once (0: one per hardware thread); the figures are the same at any "
-                     "count")
-        ->check(wholeNumber(0, 65536))
-        ->capture_default_str();
-    m_command->add_flag("--no-progress", m_noProgress,
-                        "No progress line (it is drawn on standard error only when that is a terminal)");
+    addMeasurementOptions(*m_command, m_options, m_noProgress);
 }
 
 std::optional<int> ReplayCommand::runChosen() const
@@ -646,14 +653,8 @@ FitCommand::FitCommand(CLI::App& app)
 {
     m_command =
         app.add_subcommand("fit", "Fit friction and restitution to measured trajectories: the values whose replay "
-                                  "(impulse replay) comes closest to them");
-    m_command->add_option("measured", m_options.measured, "Measured trajectory files or directories, as for replay")
-        ->required();
-    m_command
-        ->add_option("--scene", m_options.scenePath,
-                     "Template scene, as for replay; its coefficients between the body and its static bodies are "
-                     "where the fit starts")
-        ->required();
+                                  "(impulse replay) comes closest to them; the template's are where the fit starts");
+    addMeasurementOptions(*m_command, m_options.replay, m_noProgress);
     m_command
         ->add_option("--objective", m_options.objective,
                      "What is minimised: sum (mean position error in % plus mean rotation error in degrees), "
@@ -663,15 +664,6 @@ FitCommand::FitCommand(CLI::App& app)
     m_command->add_option("--max-evaluations", m_options.evaluations, "Replays of the whole set at most")
         ->check(wholeNumber(1, 100000))
         ->capture_default_str();
-    m_command->add_option("--json", m_options.jsonPath,
-                          "Also write the figures as JSON to this file; \"-\": print the JSON instead of the table");
-    m_command->add_option("--size", m_options.size, "Length the position error is measured in, m, as for replay")
-        ->check(positiveNumber());
-    m_command->add_option("--jobs", m_options.jobs, "Trajectories replayed at once (0: one per hardware thread)")
-        ->check(wholeNumber(0, 65536))
-        ->capture_default_str();
-    m_command->add_flag("--no-progress", m_noProgress,
-                        "No progress line (it is drawn on standard error only when that is a terminal)");
 }
 
 std::optional<int> FitCommand::runChosen() const
@@ -681,7 +673,7 @@ std::optional<int> FitCommand::runChosen() const
         return std::nullopt;
     }
     FitOptions options = m_options;
-    options.progress = !m_noProgress;
+    options.replay.progress = !m_noProgress;
     return runFit(options);
 }
 

@@ -28,17 +28,13 @@ struct ReplayOptions
 /// code: 0, or 2 for a template, a measured file or an option that cannot be used.
 int runReplay(const ReplayOptions& options);
 
-/// What `impulse fit` was asked to do: the measurements and template as for replay.
+/// What `impulse fit` was asked to do: the measurements, template, JSON, size, jobs and progress
+/// as for replay, and what to minimise.
 struct FitOptions
 {
-    std::vector<std::string> measured;
-    std::string scenePath;
+    ReplayOptions replay;
     std::string objective = "sum"; ///< "sum" (position % + rotation degrees), "position" or "rotation"
     int evaluations = 200;         ///< at most this many replays of the whole set
-    std::string jsonPath;          ///< as for replay
-    std::optional<double> size;    ///< as for replay
-    int jobs = 0;                  ///< as for replay
-    bool progress = true;          ///< a progress line on standard error, when it is a terminal
 };
 
 /// Fits friction and restitution between the template's body and its static bodies to the
