@@ -12,13 +12,14 @@ namespace impulse::io
 namespace
 {
 
-struct Pose
+// Where the body is after a step (impulse::Pose would carry a rotation matrix no one reads here).
+struct Placement
 {
     Vec3 position;
     Quat orientation;
 };
 
-Pose poseOf(const World& world, BodyId body)
+Placement placementOf(const World& world, BodyId body)
 {
     const BodyState state = world.state(body);
     return {state.position, state.orientation};
@@ -106,9 +107,9 @@ ReplayError replay(World& world, BodyId body, const StepOptions& options, const 
 
     ReplayError error;
     error.source = source;
-    Pose before = poseOf(world, body);
+    Placement before = placementOf(world, body);
     Real beforeTime = 0.0; // since the start
-    Pose after = before;
+    Placement after = before;
     Real afterTime = 0.0;
     for (std::size_t i = 1; i < measured.sampleCount(); ++i)
     {
@@ -118,7 +119,7 @@ ReplayError replay(World& world, BodyId body, const StepOptions& options, const 
             before = after;
             beforeTime = afterTime;
             world.step(options);
-            after = poseOf(world, body);
+            after = placementOf(world, body);
             afterTime = world.time() - start;
         }
         const Real fraction = afterTime > beforeTime ? (due - beforeTime) / (afterTime - beforeTime) : 1.0;
