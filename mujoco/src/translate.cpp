@@ -238,6 +238,15 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
 }
 
 // Rotation that the shape must share with the inertial frame; spheres need none.
+// The compiled inertia (principal moments on the inertial frame's axes) as a tensor on the axes of a
+// frame with orientation `axes` in the body frame.
+Mat3 inertiaOnAxes(const Vec3& moments, const Quat& inertialOrientation, const Quat& axes)
+{
+    const Mat3 principal = inertialOrientation.normalized().toRotationMatrix();
+    const Mat3 turn = axes.toRotationMatrix();
+    return turn.transpose() * principal * moments.asDiagonal() * principal.transpose() * turn;
+}
+
 // Whether a geom is centred on its body's centre of mass.
 bool centred(const mjModel* m, int geom, int body)
 {
@@ -640,10 +649,7 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
             const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
             const Vec3 position = vecAt(m->geom_pos + 3 * g) + geomOrientation * frame.position;
             const Quat orientation = (geomOrientation * frame.orientation).normalized();
-            const Mat3 compiledAxes = inertialOrientation.normalized().toRotationMatrix();
-            const Mat3 axes = orientation.toRotationMatrix();
-            const Mat3 tensor =
-                axes.transpose() * compiledAxes * inertia.asDiagonal() * compiledAxes.transpose() * axes;
+            const Mat3 tensor = inertiaOnAxes(inertia, inertialOrientation, orientation);
             const Real tolerance = kMeshFrameTolerance;
             const Real largest = std::max<Real>(inertia.maxCoeff(), 0.0);
             const Mat3 offDiagonal = tensor - Mat3(tensor.diagonal().asDiagonal());
@@ -670,10 +676,7 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
             // principal axes turned from the geom's (an inertia given with products, or quat): the
             // impulse body takes the geom's frame and the compiled inertia as a whole tensor on its axes
             const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
-            const Mat3 compiledAxes = inertialOrientation.normalized().toRotationMatrix();
-            const Mat3 axes = geomOrientation.toRotationMatrix();
-            const Mat3 turned =
-                axes.transpose() * compiledAxes * inertia.asDiagonal() * compiledAxes.transpose() * axes;
+            const Mat3 turned = inertiaOnAxes(inertia, inertialOrientation, geomOrientation);
             wholeTensor = 0.5 * (turned + turned.transpose());
             inertialOrientation = geomOrientation;
         }
