@@ -6,6 +6,7 @@
 
 #include <impulse/io/replay.hpp>
 #include <impulse/io/scene.hpp>
+#include <impulse/io/trajectory.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -213,11 +214,17 @@ PairCoefficients templateContact(const Batch& batch)
 }
 
 /// Replays every measurement, `jobs` at a time, each in its own copy of the template: the results
-/// do not depend on how many run at once. Throws the first failure, with its file named.
-std::vector<io::ReplayError> replayBatch(const Batch& batch, const Contact& contact, int jobsAsked, bool progressShown)
+/// do not depend on how many run at once. With `simulated`, each replay's simulation sampled at its
+/// measured times is kept there, in file order. Throws the first failure, with its file named.
+std::vector<io::ReplayError> replayBatch(const Batch& batch, const Contact& contact, int jobsAsked, bool progressShown,
+                                         std::vector<io::Trajectory>* simulated = nullptr)
 {
     const std::size_t count = batch.files.size();
     std::vector<io::ReplayError> results(count);
+    if (simulated != nullptr)
+    {
+        simulated->assign(count, io::Trajectory{});
+    }
     std::vector<std::string> failures(count);
     std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> done{0};
@@ -242,8 +249,8 @@ std::vector<io::ReplayError> replayBatch(const Batch& batch, const Contact& cont
                 }
                 StepOptions stepOptions = copy.options;
                 stepOptions.threads = 1;
-                results[i] =
-                    io::replay(copy.world, body, stepOptions, batch.measured[i], batch.size, batch.files[i].string());
+                results[i] = io::replay(copy.world, body, stepOptions, batch.measured[i], batch.size,
+                                        batch.files[i].string(), simulated != nullptr ? &(*simulated)[i] : nullptr);
             }
             catch (const std::exception& error)
             {
@@ -339,6 +346,42 @@ void addMeasurementOptions(CLI::App& command, ReplayOptions& options, bool& noPr
                      "No progress line (it is drawn on standard error only when that is a terminal)");
 }
 
+/// The name a simulated trajectory is written under: the measured file's, without .gz, as .csv.
+std::string simulatedName(const fs::path& measured)
+{
+    fs::path name = measured.filename();
+    if (name.extension() == ".gz")
+    {
+        name = name.stem();
+    }
+    return name.replace_extension(".csv").string();
+}
+
+/// Writes each simulation into `directory` (created if need be) under its measurement's name.
+/// Throws ReplayRefusal naming the directory or the file that cannot be written.
+void writeSimulated(const std::string& directory, const std::vector<fs::path>& files,
+                    const std::vector<io::Trajectory>& simulated)
+{
+    std::error_code error;
+    fs::create_directories(directory, error);
+    if (error || !fs::is_directory(directory))
+    {
+        throw ReplayRefusal(directory + ": cannot create the output directory" +
+                            (error ? " (" + error.message() + ")" : std::string()));
+    }
+    for (std::size_t i = 0; i < files.size(); ++i)
+    {
+        const fs::path path = fs::path(directory) / simulatedName(files[i]);
+        std::ofstream out(path);
+        io::TrajectoryWriter(out).writeTrajectory(simulated[i]);
+        out.flush();
+        if (!out)
+        {
+            throw ReplayRefusal(path.string() + ": cannot write");
+        }
+    }
+}
+
 } // namespace
 
 int runReplay(const ReplayOptions& options)
@@ -348,7 +391,13 @@ int runReplay(const ReplayOptions& options)
     try
     {
         batch = loadBatch(options.measured, options.scenePath, options.size);
-        results = replayBatch(batch, std::nullopt, options.jobs, options.progress && stderrIsTerminal());
+        std::vector<io::Trajectory> simulated;
+        results = replayBatch(batch, std::nullopt, options.jobs, options.progress && stderrIsTerminal(),
+                              options.outDirectory.empty() ? nullptr : &simulated);
+        if (!options.outDirectory.empty())
+        {
+            writeSimulated(options.outDirectory, batch.files, simulated);
+        }
     }
     catch (const std::exception& error)
     {
@@ -636,6 +685,9 @@ ReplayCommand::ReplayCommand(CLI::App& app)
                                      "the simulation ends up from them (position in % of the body's size, rotation in "
                                      "degrees)");
     addMeasurementOptions(*m_command, m_options, m_noProgress);
+    m_command->add_option("--out", m_options.outDirectory,
+                          "Also write each simulation, sampled at its measured times, into this directory (created "
+                          "if need be) as a trajectory CSV named after the measured file");
 }
 
 std::optional<int> ReplayCommand::runChosen() const

@@ -21,6 +21,7 @@ struct ReplayOptions
     std::string jsonPath;       ///< empty: no JSON file; "-": the JSON on standard output instead of the table
     std::optional<double> size; ///< m, what the position error is measured in; unset: the body's (bodySize)
     int jobs = 0;               ///< trajectories replayed at once; 0: one per hardware thread
+    std::string outDirectory;   ///< empty: none; else each simulation is written there (replay only)
     bool progress = true;       ///< a progress line on standard error, when it is a terminal
 };
 

@@ -13,16 +13,20 @@ namespace
 {
 
 // Where the body is after a step (impulse::Pose would carry a rotation matrix no one reads here).
-struct Placement
-{
-    Vec3 position;
-    Quat orientation;
-};
-
-Placement placementOf(const World& world, BodyId body)
+BodySample sampleOf(const World& world, BodyId body)
 {
     const BodyState state = world.state(body);
-    return {state.position, state.orientation};
+    return {state.position, state.orientation, state.linearVelocity, state.angularVelocity};
+}
+
+// The state a fraction of the way from one step's to the next: positions and velocities linearly,
+// orientations by slerp.
+BodySample between(const BodySample& before, const BodySample& after, Real fraction)
+{
+    return {before.position + fraction * (after.position - before.position),
+            before.orientation.slerp(fraction, after.orientation),
+            before.linearVelocity + fraction * (after.linearVelocity - before.linearVelocity),
+            before.angularVelocity + fraction * (after.angularVelocity - before.angularVelocity)};
 }
 
 // The angle between two orientations, degrees: that of the rotation taking one to the other.
@@ -86,7 +90,7 @@ Real bodySize(const Shape& shape)
 }
 
 ReplayError replay(World& world, BodyId body, const StepOptions& options, const Trajectory& measured, Real size,
-                   const std::string& source)
+                   const std::string& source, Trajectory* simulated)
 {
     if (measured.sampleCount() < 2 || measured.bodyCount < 1)
     {
@@ -107,9 +111,16 @@ ReplayError replay(World& world, BodyId body, const StepOptions& options, const 
 
     ReplayError error;
     error.source = source;
-    Placement before = placementOf(world, body);
+    BodySample before = sampleOf(world, body);
     Real beforeTime = 0.0; // since the start
-    Placement after = before;
+    BodySample after = before;
+    if (simulated != nullptr)
+    {
+        *simulated = Trajectory{};
+        simulated->bodyCount = 1;
+        simulated->times.push_back(t0);
+        simulated->samples.push_back(before);
+    }
     Real afterTime = 0.0;
     for (std::size_t i = 1; i < measured.sampleCount(); ++i)
     {
@@ -119,15 +130,19 @@ ReplayError replay(World& world, BodyId body, const StepOptions& options, const 
             before = after;
             beforeTime = afterTime;
             world.step(options);
-            after = placementOf(world, body);
+            after = sampleOf(world, body);
             afterTime = world.time() - start;
         }
         const Real fraction = afterTime > beforeTime ? (due - beforeTime) / (afterTime - beforeTime) : 1.0;
-        const Vec3 position = before.position + fraction * (after.position - before.position);
-        const Quat orientation = before.orientation.slerp(fraction, after.orientation);
+        const BodySample state = between(before, after, fraction);
+        if (simulated != nullptr)
+        {
+            simulated->times.push_back(measured.times[i]);
+            simulated->samples.push_back(state);
+        }
         const BodySample& sample = measured.at(i, 0);
-        const Real positionError = 100.0 * (position - sample.position).norm() / size;
-        const Real rotationError = angleBetween(orientation, sample.orientation);
+        const Real positionError = 100.0 * (state.position - sample.position).norm() / size;
+        const Real rotationError = angleBetween(state.orientation, sample.orientation);
         error.positionError += positionError;
         error.rotationError += rotationError;
         error.finalPosition = positionError;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <impulse/io/trajectory_reader.hpp>
 #include <impulse/world.hpp>
 
 #include <ostream>
@@ -20,8 +21,12 @@ class TrajectoryWriter
     void writeHeader();
     /// One row per body in `bodies`, numbered 0.. in that order, at time t.
     void writeSample(Real t, const World& world, const std::vector<BodyId>& bodies);
+    /// The header, then every sample of a trajectory held in memory.
+    void writeTrajectory(const Trajectory& trajectory);
 
   private:
+    void writeRow(Real t, std::size_t body, const BodySample& sample);
+
     std::ostream& m_out;
 };
 
