@@ -246,11 +246,11 @@ void ContactCache::pointsAt(std::size_t k, const PlacedShape& a, const PlacedSha
     }
 }
 
-void ContactCache::overlapsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real allowance, Real thickness,
-                              Real reach, std::vector<ContactPoint>& out, ContactScratch& scratch)
+void ContactCache::overlapsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real threshold, Real allowance,
+                              Real thickness, Real reach, std::vector<ContactPoint>& out, ContactScratch& scratch)
 {
     const std::size_t first = out.size();
-    pointsAt(k, a, b, 0.0, thickness, reach, out, scratch);
+    pointsAt(k, a, b, threshold, thickness, reach, out, scratch);
     ContactEntry& entry = m_entries[k];
     if (entry.exact)
     {
@@ -266,7 +266,7 @@ void ContactCache::overlapsAt(std::size_t k, const PlacedShape& a, const PlacedS
         out.resize(first);
         entry.reach = reach;
         capture(entry, a, b, thickness + reach, scratch);
-        evaluate(entry, a, b, 0.0, out);
+        evaluate(entry, a, b, threshold, out);
     }
 }
 

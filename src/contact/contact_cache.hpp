@@ -135,13 +135,14 @@ class ContactCache
     void pointsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real threshold, Real thickness, Real reach,
                   std::vector<ContactPoint>& out, ContactScratch& scratch);
 
-    /// The points of pair k with phi below 0 at these poses, for moving the bodies apart by them
+    /// The points of pair k with phi below `threshold` at these poses (0: the overlaps; a little
+    /// above it: also what touches, to hold a joint push), for moving the bodies apart by them
     /// (push-out): as pointsAt, but when they show an overlap deeper than `allowance` and the
     /// bodies have moved since capture by more than a quarter of it, captured anew here first. A
     /// cached point's separation may be off by twice that motion, and a push by a stale overlap
     /// that is not there drives the bodies into their other neighbours.
-    void overlapsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real allowance, Real thickness,
-                    Real reach, std::vector<ContactPoint>& out, ContactScratch& scratch);
+    void overlapsAt(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real threshold, Real allowance,
+                    Real thickness, Real reach, std::vector<ContactPoint>& out, ContactScratch& scratch);
 
     /// Every point of entry k, evaluated from its anchors at these poses, one per cached point in
     /// their order (for an exact entry: as captured). Meant right after refresh at the same poses.

@@ -4,16 +4,65 @@
 #include "collision/contact.hpp"
 #include "dynamics/rigid_body.hpp"
 
+#include <array>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace impulse
 {
 
+/// A body's part in a push: how a pseudo-impulse moves it, and the move so far. Default-constructed,
+/// or built from a static body (zero inverse mass and inertia), it is held: nothing moves it.
+struct PushedBody
+{
+    Vec3 centre = Vec3::Zero();
+    Real invMass = 0.0;
+    Mat3 invInertia = Mat3::Zero(); ///< world frame
+    Vec3 move = Vec3::Zero();       ///< translation
+    Vec3 turn = Vec3::Zero();       ///< rotation vector
+    PushedBody() = default;
+    explicit PushedBody(const RigidBody& body)
+        : centre(body.position), invMass(body.invMass), invInertia(body.invInertiaWorld)
+    {
+    }
+    /// How far the point at `p` moves along `n` under the move so far.
+    Real displacement(const Vec3& p, const Vec3& n) const { return n.dot(move) + (p - centre).cross(n).dot(turn); }
+    /// Normal displacement at `p` per unit pseudo-impulse along `n`.
+    Real compliance(const Vec3& p, const Vec3& n) const
+    {
+        const Vec3 lever = (p - centre).cross(n);
+        return invMass + lever.dot(invInertia * lever);
+    }
+    void apply(const Vec3& p, const Vec3& pseudoImpulse)
+    {
+        move += invMass * pseudoImpulse;
+        turn += invInertia * (p - centre).cross(pseudoImpulse);
+    }
+    /// How far the body's farthest point moves, to first order.
+    Real reachUsed(Real boundingRadius) const { return move.norm() + turn.norm() * boundingRadius; }
+};
+
+/// One point of a joint push: the two bodies it lies between, by index into the world's bodies,
+/// and the point, its normal from b toward a.
+struct JointPoint
+{
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    ContactPoint point;
+};
+
 /// What a push reuses from one call to the next (one per worker thread).
 struct PushOutScratch
 {
-    std::vector<ContactPoint> points; ///< for the caller to gather a push's points in
-    std::vector<Real> lambda;         ///< per point: how far the solution moves along its normal
+    std::vector<ContactPoint> points;           ///< for the caller to gather a push's points in
+    std::vector<JointPoint> jointPoints;        ///< for the caller to gather a joint push's points in
+    std::vector<Real> lambda;                   ///< per point: how far the solution moves along its normal
+    std::vector<PushedBody> pushed;             ///< a joint push's bodies
+    std::vector<std::uint32_t> members;         ///< their indices in the world
+    std::vector<std::array<int, 2>> pointSlots; ///< per point: the slots of its two bodies
+    std::vector<std::uint32_t> moved;           ///< the bodies the last joint push moved
+    std::vector<std::uint32_t> around;          ///< for the caller: the neighbours a joint push takes in
 };
 
 /// Moves `body`, never its velocity or angular momentum, out of everything it rests on (the supports
@@ -33,5 +82,18 @@ bool pushOutOfSupports(RigidBody& body, const std::vector<ContactPoint>& points,
 /// Returns whether they moved.
 bool pushApart(RigidBody& a, RigidBody& b, const std::vector<ContactPoint>& points, Real allowance, Real reachA,
                Real reachB, PushOutScratch& scratch);
+
+/// Moves every dynamic body of `points` at once: the least move of all of them together, in their
+/// joint mass metric, that brings every point to phi >= 0 (to first order), by projected
+/// Gauss-Seidel over all the points; static bodies stay put. A light body pressed into the ground
+/// by a heavy one is then held by the ground while the heavy one moves, where pair-by-pair pushes
+/// would shuttle it between the two, each clearing only the heavy body's small share. Nothing moves
+/// unless some point lies deeper than `allowance`; each body's move is cut back as a single push's
+/// is (within `reach(i)`, turning no further than the deepest overlap). `slotOf` maps a body index
+/// to its slot and must hold -1 for every body on entry; it does again on return. The bodies moved
+/// are left in scratch.moved.
+void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPoint>& points, Real allowance,
+                       const std::function<Real(std::uint32_t)>& reach, std::vector<int>& slotOf,
+                       PushOutScratch& scratch);
 
 } // namespace impulse

@@ -38,9 +38,9 @@ namespace impulse
 namespace
 {
 
-// Push-out's two-way relaxation of what the level sweeps leave: in the thousand-body piles a few
-// sweeps clear it; the cap bounds the cost when a pile is still being compressed
-constexpr int kPushOutSettleSweeps = 16;
+// Rounds of push-out's joint push of what the level sweeps leave: in the thousand-body piles a few
+// clear it; the cap bounds the cost when a pile is still being compressed
+constexpr int kPushOutJointRounds = 16;
 
 // Times the broad phase is run again in a step for bodies the collision pass sped beyond their boxes
 // (each time on the grown margins: a chain of hits passes speed on one body per pass)
@@ -1117,12 +1117,12 @@ void WorldImpl::updatePositions(const StepOptions& options)
                     });
 }
 
-void WorldImpl::pointsToward(std::uint32_t k, std::uint32_t body, const StepOptions& options,
+void WorldImpl::pointsToward(std::uint32_t k, std::uint32_t body, Real threshold, const StepOptions& options,
                              std::vector<ContactPoint>& out, ContactScratch& contactScratch)
 {
     const BodyPair& pair = pairs[k];
     const std::size_t first = out.size();
-    contacts.overlapsAt(k, placed(pair.a, bodies[pair.a].pose()), placed(pair.b, bodies[pair.b].pose()),
+    contacts.overlapsAt(k, placed(pair.a, bodies[pair.a].pose()), placed(pair.b, bodies[pair.b].pose()), threshold,
                         options.pushOutAllowance, options.contactThickness, pairReach(k, options), out, contactScratch);
     if (body == pair.b)
     {
@@ -1137,6 +1137,8 @@ void WorldImpl::pushOut(const StepOptions& options)
 {
     pushOrigins.resize(bodies.size());
     lastPushSweep.assign(bodies.size(), -1); // static bodies never move
+    jointPushSweep.assign(bodies.size(), -1);
+    pushSlot.assign(bodies.size(), -1);
     std::vector<int> moves(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
@@ -1172,7 +1174,7 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
     {
         const BodyPair& pair = pairs[k];
         points.clear();
-        pointsToward(k, pair.a, options, points, local.contact);
+        pointsToward(k, pair.a, 0.0, options, points, local.contact);
         if (!pushApart(bodies[pair.a], bodies[pair.b], points, allowance, reach(pair.a), reach(pair.b), local.pushOut))
         {
             return false;
@@ -1204,7 +1206,7 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
                 points.clear();
                 for (const std::uint32_t k : island.supportsOf(n))
                 {
-                    pointsToward(k, i, options, points, local.contact);
+                    pointsToward(k, i, 0.0, options, points, local.contact);
                 }
                 if (pushOutOfSupports(bodies[i], points, allowance, reach(i), local.pushOut))
                 {
@@ -1229,15 +1231,17 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
 
     // The levels order bodies by how they move, not by where they are, so in a dense pile a body
     // may count as a "support" something that presses on it from the side or from above; no move of
-    // the upper body alone then clears both. What is left is relaxed two-way, every pair sharing its
-    // move by inverse mass, Gauss-Seidel over the pairs of bodies that moved since they were last
-    // looked at. Every overlapping pair has such a body: pairs whose bodies never moved were found
-    // clear in the first sweep.
-    for (int settleSweep = 0; settleSweep < kPushOutSettleSweeps && !settled; ++settleSweep, ++sweep)
+    // the upper body alone then clears both. What is left is pushed jointly: the bodies of every pair
+    // still overlapping beyond the allowance and their neighbours move at once, held by everything
+    // they touch. Every overlapping pair has a body moved since
+    // it was last looked at: pairs whose bodies never moved were found clear in the first sweep.
+    std::vector<JointPoint>& joint = local.pushOut.jointPoints;
+    const auto reachOf = [&](std::uint32_t i) { return reach(i); };
+    for (int round = 0; round < kPushOutJointRounds && !settled; ++round, ++sweep)
     {
-        settled = true;
-        // the first settle sweep looks at every pair a level sweep moved (at all of them if none ran)
-        const int movedSince = settleSweep > 0 ? sweep - 1 : (sweep > 0 ? 0 : -1);
+        // the first round looks at the pairs of every body a level sweep moved (all if none ran)
+        const int movedSince = round > 0 ? sweep - 1 : (sweep > 0 ? 0 : -1);
+        bool overlapping = false;
         for (const std::uint32_t k : island.pairs)
         {
             const BodyPair& pair = pairs[k];
@@ -1245,11 +1249,68 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
             {
                 continue;
             }
-            if (pushPair(k))
+            points.clear();
+            pointsToward(k, pair.a, 0.0, options, points, local.contact);
+            if (std::none_of(points.begin(), points.end(), [&](const ContactPoint& p) { return -p.phi > allowance; }))
             {
-                settled = false;
+                continue;
+            }
+            overlapping = true;
+            for (const std::uint32_t i : {pair.a, pair.b})
+            {
+                if (bodies[i].dynamic)
+                {
+                    jointPushSweep[i] = sweep;
+                }
             }
         }
+        if (!overlapping)
+        {
+            break;
+        }
+        // and their neighbours, so that a neighbour pushed is held by what it rests on
+        std::vector<std::uint32_t>& around = local.pushOut.around;
+        around.clear();
+        for (const std::uint32_t k : island.pairs)
+        {
+            const BodyPair& pair = pairs[k];
+            if (jointPushSweep[pair.a] == sweep && bodies[pair.b].dynamic)
+            {
+                around.push_back(pair.b);
+            }
+            if (jointPushSweep[pair.b] == sweep && bodies[pair.a].dynamic)
+            {
+                around.push_back(pair.a);
+            }
+        }
+        for (const std::uint32_t i : around)
+        {
+            jointPushSweep[i] = sweep;
+        }
+        // every point within the allowance of the pairs of all those bodies, touching ones too: a
+        // body pushed up against another is then held by it, not driven into it
+        joint.clear();
+        for (const std::uint32_t k : island.pairs)
+        {
+            const BodyPair& pair = pairs[k];
+            if (std::max(jointPushSweep[pair.a], jointPushSweep[pair.b]) < sweep)
+            {
+                continue;
+            }
+            points.clear();
+            pointsToward(k, pair.a, allowance, options, points, local.contact);
+            for (const ContactPoint& point : points)
+            {
+                joint.push_back({pair.a, pair.b, point});
+            }
+        }
+        pushApartTogether(bodies, joint, allowance, reachOf, pushSlot, local.pushOut);
+        for (const std::uint32_t i : local.pushOut.moved)
+        {
+            lastPushSweep[i] = sweep;
+        }
+        moves += static_cast<int>(local.pushOut.moved.size());
+        settled = local.pushOut.moved.empty();
     }
     return moves;
 }

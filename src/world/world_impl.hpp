@@ -115,6 +115,8 @@ class WorldImpl
     std::vector<SolverBody> solverBodies;  ///< per body: velocities while the contact passes solve
     std::vector<Pose> pushOrigins;         ///< per body: its pose before push-out
     std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
+    std::vector<int> jointPushSweep;       ///< per body: the last joint push that took it in, or -1
+    std::vector<int> pushSlot;             ///< per body: its slot in the joint push under way, or -1
     std::vector<QuietStamp> quietPairs;    ///< parallel to pairs
     std::uint64_t pass = 0;                ///< counts the collision passes, so that no stamp outlives its own
     std::vector<ThreadScratch> scratch;    ///< one per worker thread
@@ -188,10 +190,10 @@ class WorldImpl
     void planLevels(Island& island, ThreadScratch& scratch);
     void buildRows(Island& island, ThreadScratch& scratch, const StepOptions& options, const PassSettings& settings);
     int pushOutIsland(const Island& island, ThreadScratch& scratch, const StepOptions& options);
-    /// The overlapping points of pair k at the bodies' current poses (ContactCache::overlapsAt), normals
-    /// turned toward `body` (one of the pair).
-    void pointsToward(std::uint32_t k, std::uint32_t body, const StepOptions& options, std::vector<ContactPoint>& out,
-                      ContactScratch& contactScratch);
+    /// The points of pair k with phi below `threshold` at the bodies' current poses
+    /// (ContactCache::overlapsAt), normals turned toward `body` (one of the pair).
+    void pointsToward(std::uint32_t k, std::uint32_t body, Real threshold, const StepOptions& options,
+                      std::vector<ContactPoint>& out, ContactScratch& contactScratch);
 };
 
 } // namespace impulse

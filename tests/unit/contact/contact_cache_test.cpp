@@ -510,7 +510,7 @@ TEST(ContactCache, OverlapsAtCapturesAnewWhereAStalePointShowsAnOverlapThatIsNot
     cache.refresh(0, hanging, bottom, kThickness, kReach, 0.0, scratch);
     constexpr Real kAllowance = 1e-4;
     std::vector<ContactPoint> found;
-    cache.overlapsAt(0, hanging, bottom, kAllowance, kThickness, kReach, found, scratch);
+    cache.overlapsAt(0, hanging, bottom, 0.0, kAllowance, kThickness, kReach, found, scratch);
     EXPECT_TRUE(found.empty()) << "1 mm apart, nothing overlaps";
 
     // 3 cm further out and 3 mm lower: beside the large box, 2 cm from it, within the entry's reach
@@ -531,7 +531,7 @@ TEST(ContactCache, OverlapsAtCapturesAnewWhereAStalePointShowsAnOverlapThatIsNot
     ASSERT_LT(deepest(stale), -1e-3) << "the anchored points no longer show the stale overlap this test is about";
     cache.takeCounters();
     found.clear();
-    cache.overlapsAt(0, beside, bottom, kAllowance, kThickness, kReach, found, scratch);
+    cache.overlapsAt(0, beside, bottom, 0.0, kAllowance, kThickness, kReach, found, scratch);
     EXPECT_TRUE(found.empty()) << "deepest " << deepest(found);
     EXPECT_EQ(cache.takeCounters().captures, 1);
 
@@ -540,7 +540,7 @@ TEST(ContactCache, OverlapsAtCapturesAnewWhereAStalePointShowsAnOverlapThatIsNot
     cache.refresh(0, sunk, bottom, kThickness, kReach, 0.0, scratch);
     cache.takeCounters();
     found.clear();
-    cache.overlapsAt(0, sunk, bottom, kAllowance, kThickness, kReach, found, scratch);
+    cache.overlapsAt(0, sunk, bottom, 0.0, kAllowance, kThickness, kReach, found, scratch);
     EXPECT_NEAR(deepest(found), -0.002, 1e-12);
     EXPECT_EQ(cache.takeCounters().captures, 0);
 }
