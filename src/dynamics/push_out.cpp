@@ -53,6 +53,27 @@ Real deepestOf(const std::vector<ContactPoint>& points)
     return deepest;
 }
 
+/// One projected Gauss-Seidel update of a point's pseudo-impulse `lambda` >= 0 toward phi >= 0
+/// (normal from b toward a); returns how far it changed the point's gap, m.
+Real relaxPoint(const ContactPoint& p, PushedBody& a, PushedBody& b, Real& lambda)
+{
+    const Real compliance = a.compliance(p.point, p.normal) + b.compliance(p.point, p.normal);
+    if (!(compliance > 0.0))
+    {
+        return 0.0; // both held: nothing can move this point
+    }
+    const Real gap = p.phi + a.displacement(p.point, p.normal) - b.displacement(p.point, p.normal);
+    const Real updated = std::max(0.0, lambda - gap / compliance);
+    const Real change = updated - lambda;
+    if (change != 0.0)
+    {
+        a.apply(p.point, change * p.normal);
+        b.apply(p.point, -change * p.normal);
+        lambda = updated;
+    }
+    return std::abs(change) * compliance;
+}
+
 /// The least move in the mass metric with phi_i + (displacement of a - displacement of b) . n_i >= 0
 /// for every point (normals point from b toward a), by projected Gauss-Seidel on lambda_i >= 0.
 void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, PushedBody& b, std::vector<Real>& lambda)
@@ -63,22 +84,7 @@ void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, Push
         Real largestChange = 0.0; // m: of any point's gap
         for (std::size_t i = 0; i < points.size(); ++i)
         {
-            const ContactPoint& p = points[i];
-            const Real compliance = a.compliance(p.point, p.normal) + b.compliance(p.point, p.normal);
-            if (!(compliance > 0.0))
-            {
-                continue; // both held: nothing can move this point
-            }
-            const Real gap = p.phi + a.displacement(p.point, p.normal) - b.displacement(p.point, p.normal);
-            const Real updated = std::max(0.0, lambda[i] - gap / compliance);
-            const Real change = updated - lambda[i];
-            if (change != 0.0)
-            {
-                a.apply(p.point, change * p.normal);
-                b.apply(p.point, -change * p.normal);
-                lambda[i] = updated;
-                largestChange = std::max(largestChange, std::abs(change) * compliance);
-            }
+            largestChange = std::max(largestChange, relaxPoint(points[i], a, b, lambda[i]));
         }
         if (largestChange < kSolverTolerance)
         {
@@ -194,24 +200,9 @@ void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPo
         Real largestChange = 0.0; // m: of any point's gap
         for (std::size_t n = 0; n < points.size(); ++n)
         {
-            const ContactPoint& p = points[n].point;
             PushedBody& a = pushed[static_cast<std::size_t>(slots[n][0])];
             PushedBody& b = pushed[static_cast<std::size_t>(slots[n][1])];
-            const Real compliance = a.compliance(p.point, p.normal) + b.compliance(p.point, p.normal);
-            if (!(compliance > 0.0))
-            {
-                continue; // both held
-            }
-            const Real gap = p.phi + a.displacement(p.point, p.normal) - b.displacement(p.point, p.normal);
-            const Real updated = std::max(0.0, lambda[n] - gap / compliance);
-            const Real change = updated - lambda[n];
-            if (change != 0.0)
-            {
-                a.apply(p.point, change * p.normal);
-                b.apply(p.point, -change * p.normal);
-                lambda[n] = updated;
-                largestChange = std::max(largestChange, std::abs(change) * compliance);
-            }
+            largestChange = std::max(largestChange, relaxPoint(points[n].point, a, b, lambda[n]));
         }
         if (largestChange < tolerance)
         {
