@@ -15,7 +15,8 @@
 // The move is solved by projected Gauss-Seidel on one pseudo-impulse lambda_i >= 0 per point: each
 // point's J_i = (n_i, r_i x n_i) maps the move to its normal displacement, and the move is
 // M^-1 sum lambda_i J_i^T. A small convex problem in six (or twelve) unknowns, which converges in a
-// few sweeps.
+// few sweeps. The joint push poses the same problem for many bodies at once, so that what a body
+// rests on holds it while the bodies around it are pushed.
 //
 // Turning is where a push can overshoot. Where a body's points press on supports from opposite
 // sides, the least move may clear a shallow overlap by a large turn, and in a jam that turn drives

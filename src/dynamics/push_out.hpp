@@ -21,24 +21,29 @@ struct PushedBody
     Mat3 invInertia = Mat3::Zero(); ///< world frame
     Vec3 move = Vec3::Zero();       ///< translation
     Vec3 turn = Vec3::Zero();       ///< rotation vector
+
     PushedBody() = default;
     explicit PushedBody(const RigidBody& body)
         : centre(body.position), invMass(body.invMass), invInertia(body.invInertiaWorld)
     {
     }
+
     /// How far the point at `p` moves along `n` under the move so far.
     Real displacement(const Vec3& p, const Vec3& n) const { return n.dot(move) + (p - centre).cross(n).dot(turn); }
+
     /// Normal displacement at `p` per unit pseudo-impulse along `n`.
     Real compliance(const Vec3& p, const Vec3& n) const
     {
         const Vec3 lever = (p - centre).cross(n);
         return invMass + lever.dot(invInertia * lever);
     }
+
     void apply(const Vec3& p, const Vec3& pseudoImpulse)
     {
         move += invMass * pseudoImpulse;
         turn += invInertia * (p - centre).cross(pseudoImpulse);
     }
+
     /// How far the body's farthest point moves, to first order.
     Real reachUsed(Real boundingRadius) const { return move.norm() + turn.norm() * boundingRadius; }
 };
