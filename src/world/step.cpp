@@ -1136,9 +1136,9 @@ void WorldImpl::pointsToward(std::uint32_t k, std::uint32_t body, Real threshold
 void WorldImpl::pushOut(const StepOptions& options)
 {
     pushOrigins.resize(bodies.size());
-    lastPushSweep.assign(bodies.size(), -1); // static bodies never move
-    jointPushSweep.assign(bodies.size(), -1);
-    pushSlot.assign(bodies.size(), -1);
+    lastPushSweep.assign(bodies.size(), -1);  // static bodies never move
+    jointPushSweep.assign(bodies.size(), -1); // sweeps count from 0 again every step
+    pushSlot.resize(bodies.size(), -1);       // a joint push leaves every slot -1 again
     std::vector<int> moves(islands.size(), 0);
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int thread)
@@ -1236,7 +1236,6 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
     // they touch. Every overlapping pair has a body moved since
     // it was last looked at: pairs whose bodies never moved were found clear in the first sweep.
     std::vector<JointPoint>& joint = local.pushOut.jointPoints;
-    const auto reachOf = [&](std::uint32_t i) { return reach(i); };
     for (int round = 0; round < kPushOutJointRounds && !settled; ++round, ++sweep)
     {
         // the first round looks at the pairs of every body a level sweep moved (all if none ran)
@@ -1304,7 +1303,7 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
                 joint.push_back({pair.a, pair.b, point});
             }
         }
-        pushApartTogether(bodies, joint, allowance, reachOf, pushSlot, local.pushOut);
+        pushApartTogether(bodies, joint, allowance, reach, pushSlot, local.pushOut);
         for (const std::uint32_t i : local.pushOut.moved)
         {
             lastPushSweep[i] = sweep;

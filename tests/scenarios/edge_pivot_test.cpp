@@ -201,23 +201,25 @@ TEST(EdgePivot, ACubeSlidingOnItsEdgeTipsForwardOrFallsBackAsTheCoulombOdeSaysAn
 // w = m v (a - h) / I_edge. It tips over if that turn can lift its centre from a - h over the edge,
 // to sqrt(a^2 + (a - h)^2) above it: v_c = I_edge / (m (a - h)) * sqrt(2 m g (r - (a - h)) / I_edge),
 // 1.6345 m/s. (Through the turn the stop's push stays positive, so the edge holds it throughout.)
+constexpr Real kStopCubeHalf = 0.1; // a, m
+constexpr Real kStopCubeMass = 1.0; // kg
+constexpr Real kStopHeight = 0.01;  // h, m
+
 Real tiltAfterSlidingIntoAStop(Real speed)
 {
-    constexpr Real kSide = 0.1;
-    constexpr Real kStop = 0.01;
     World world({.gravity = {0, 0, -9.81}});
     const MaterialId slick = world.createMaterial({.restitution = 0.0, .friction = 0.0});
     const MaterialId grip = world.createMaterial({.restitution = 0.0, .friction = 2.0});
     world.setPairCoefficients(slick, grip, {.restitution = 0.0, .friction = 2.0});
     world.createBody({.type = BodyType::Static, .shape = Plane{}, .material = slick});
     world.createBody({.type = BodyType::Static,
-                      .shape = Box{{0.05, 0.5, kStop / 2}},
+                      .shape = Box{{0.05, 0.5, kStopHeight / 2}},
                       .material = grip,
-                      .position = {0.2, 0, kStop / 2}});
-    const BodyId cube = world.createBody({.shape = Box{Vec3::Constant(kSide)},
+                      .position = {0.2, 0, kStopHeight / 2}});
+    const BodyId cube = world.createBody({.shape = Box{Vec3::Constant(kStopCubeHalf)},
                                           .material = slick,
-                                          .mass = 1.0,
-                                          .position = {0.2 - 0.05 - kSide - 0.01, 0, kSide},
+                                          .mass = kStopCubeMass,
+                                          .position = {0.2 - 0.05 - kStopCubeHalf - 0.01, 0, kStopCubeHalf},
                                           .linearVelocity = {speed, 0, 0}});
     for (int k = 0; k < 1500; ++k)
     {
@@ -228,14 +230,12 @@ Real tiltAfterSlidingIntoAStop(Real speed)
 
 TEST(EdgePivot, ACubeSlidingIntoALowStopTipsOverAboveTheCriticalSpeedAndRocksBackBelowIt)
 {
-    constexpr Real kA = 0.1;
-    constexpr Real kH = 0.01;
-    constexpr Real kMassOfCube = 1.0;
-    const Real lever = kA - kH;
-    const Real radius = std::hypot(kA, lever);
-    const Real momentAboutEdge = 2.0 / 3.0 * kMassOfCube * kA * kA + kMassOfCube * radius * radius;
-    const Real critical = momentAboutEdge / (kMassOfCube * lever) *
-                          std::sqrt(2.0 * kMassOfCube * 9.81 * (radius - lever) / momentAboutEdge);
+    const Real lever = kStopCubeHalf - kStopHeight;
+    const Real radius = std::hypot(kStopCubeHalf, lever);
+    const Real momentAboutEdge =
+        2.0 / 3.0 * kStopCubeMass * kStopCubeHalf * kStopCubeHalf + kStopCubeMass * radius * radius;
+    const Real critical = momentAboutEdge / (kStopCubeMass * lever) *
+                          std::sqrt(2.0 * kStopCubeMass * 9.81 * (radius - lever) / momentAboutEdge);
     ASSERT_NEAR(critical, 1.6345, 1e-4);
     // 3 % either side, 6 % in energy (at dt = 1 ms the simulated threshold lies within 2 % of v_c)
     const Real pi = std::acos(-1.0);
