@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace impulse
 {
@@ -51,6 +52,105 @@ Real closestParameter(const Segment& segment, const Vec3& point)
 
 } // namespace
 
+LeastAlong leastBoxDistanceAlong(const Vec3& halfExtents, const Vec3& start, const Vec3& along)
+{
+    // The box's signed distance is convex, and along the segment it is smooth between the
+    // parameters where a coordinate crosses a face plane (+-h) or a mid-plane (0): there the set of
+    // axes the point lies outside of, and the sign of each coordinate, stay the same. On such a
+    // stretch it is the length of a vector affine in s (outside) or the largest of three affine
+    // functions (inside), so its least value is at a stretch end, at the vertex of the squared
+    // length, or where two of the affine functions cross. The least over those candidates is the
+    // least over the segment; no iteration, and exact to round-off.
+    std::array<Real, 11> breaks{};
+    std::size_t count = 0;
+    breaks[count++] = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+        if (along[i] == 0.0)
+        {
+            continue;
+        }
+        for (const Real plane : {-halfExtents[i], 0.0, halfExtents[i]})
+        {
+            const Real s = (plane - start[i]) / along[i];
+            if (s > 0.0 && s < 1.0)
+            {
+                breaks[count++] = s;
+            }
+        }
+    }
+    breaks[count++] = 1.0;
+    std::sort(breaks.begin(), breaks.begin() + static_cast<std::ptrdiff_t>(count));
+
+    LeastAlong least{0.0, std::numeric_limits<Real>::infinity()};
+    const auto consider = [&](Real s)
+    {
+        const Real phi = boxDistance(halfExtents, start + s * along).phi;
+        if (phi < least.phi)
+        {
+            least = {s, phi};
+        }
+    };
+    for (std::size_t k = 0; k < count; ++k)
+    {
+        consider(breaks[k]);
+    }
+    for (std::size_t k = 0; k + 1 < count; ++k)
+    {
+        const Real lo = breaks[k];
+        const Real hi = breaks[k + 1];
+        if (!(hi > lo))
+        {
+            continue;
+        }
+        const Vec3 middle = start + (0.5 * (lo + hi)) * along;
+        Vec3 sign;
+        bool outside = false;
+        for (int i = 0; i < 3; ++i)
+        {
+            sign[i] = middle[i] < 0.0 ? -1.0 : 1.0;
+            outside = outside || std::abs(middle[i]) > halfExtents[i];
+        }
+        if (outside)
+        {
+            // the vertex of |start + s along - nearest face point|^2 over the axes outside here
+            Real slope = 0.0;
+            Real curvature = 0.0;
+            for (int i = 0; i < 3; ++i)
+            {
+                if (std::abs(middle[i]) > halfExtents[i])
+                {
+                    slope += (start[i] - sign[i] * halfExtents[i]) * along[i];
+                    curvature += along[i] * along[i];
+                }
+            }
+            if (curvature > 0.0)
+            {
+                consider(std::clamp(-slope / curvature, lo, hi));
+            }
+            continue;
+        }
+        // inside: where two of sign_i x_i(s) - h_i cross
+        for (int i = 0; i < 3; ++i)
+        {
+            for (int j = i + 1; j < 3; ++j)
+            {
+                const Real rate = sign[i] * along[i] - sign[j] * along[j];
+                if (rate != 0.0)
+                {
+                    const Real s =
+                        ((sign[j] * start[j] - halfExtents[j]) - (sign[i] * start[i] - halfExtents[i])) / rate;
+                    if (s > lo && s < hi)
+                    {
+                        consider(s);
+                    }
+                }
+            }
+        }
+    }
+    return least;
+}
+
 void collideCapsuleSphere(const Capsule& a, const Pose& poseA, const Sphere& b, const Pose& poseB, Real threshold,
                           std::vector<ContactPoint>& out)
 {
@@ -80,7 +180,6 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
                        std::vector<ContactPoint>& out)
 {
     const Segment axis = axisOf(a, poseA);
-    const auto boxPhi = [&](Real s) { return boxDistance(b.halfExtents, poseB.toLocal(axis.at(s))).phi; };
     const auto addEndSphere = [&](Real s, std::uint32_t feature)
     {
         const Vec3 centre = axis.at(s);
@@ -95,40 +194,16 @@ void collideCapsuleBox(const Capsule& a, const Pose& poseA, const Box& b, const 
     addEndSphere(0.0, 0);
     addEndSphere(1.0, 1);
 
-    // The box's signed distance is convex, so along the segment it has one minimum (or one flat
-    // bottom): golden-section search finds it. It adds a point only when strictly deeper than both
-    // ends, which is a box edge or corner under the capsule's middle, not a face it lies flat on.
-    constexpr Real kInvPhi = 0.6180339887498949;
-    Real lo = 0.0;
-    Real hi = 1.0;
-    Real x1 = hi - kInvPhi * (hi - lo);
-    Real x2 = lo + kInvPhi * (hi - lo);
-    Real f1 = boxPhi(x1);
-    Real f2 = boxPhi(x2);
-    for (int i = 0; i < 80; ++i)
-    {
-        if (f1 <= f2)
-        {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - kInvPhi * (hi - lo);
-            f1 = boxPhi(x1);
-        }
-        else
-        {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + kInvPhi * (hi - lo);
-            f2 = boxPhi(x2);
-        }
-    }
-    const Real middle = 0.5 * (lo + hi);
+    // A point only where the segment goes strictly deeper than both ends: a box edge or corner
+    // under the capsule's middle, not a face it lies flat on.
+    const Vec3 start = poseB.toLocal(axis.start);
+    const Vec3 along = poseB.toLocal(axis.end) - start;
+    const LeastAlong least = leastBoxDistanceAlong(b.halfExtents, start, along);
     const Real scale = a.radius + a.halfLength + b.halfExtents.norm();
-    if (boxPhi(middle) < std::min(boxPhi(0.0), boxPhi(1.0)) - 1e-9 * scale)
+    const Real ends = std::min(boxDistance(b.halfExtents, start).phi, boxDistance(b.halfExtents, start + along).phi);
+    if (least.phi < ends - 1e-9 * scale)
     {
-        addEndSphere(middle, 2);
+        addEndSphere(least.s, 2);
     }
 }
 

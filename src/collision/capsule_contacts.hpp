@@ -14,6 +14,16 @@
 namespace impulse
 {
 
+/// Where along the segment start + s along, s in [0, 1], the signed distance of the box of
+/// `halfExtents` (all in the box's frame) is least, and that distance. On a flat stretch (a segment
+/// parallel to the nearest face) any s of the stretch may be returned.
+struct LeastAlong
+{
+    Real s = 0.0;
+    Real phi = 0.0;
+};
+LeastAlong leastBoxDistanceAlong(const Vec3& halfExtents, const Vec3& start, const Vec3& along);
+
 /// Capsule A against sphere B: the segment point closest to the sphere's centre.
 void collideCapsuleSphere(const Capsule& a, const Pose& poseA, const Sphere& b, const Pose& poseB, Real threshold,
                           std::vector<ContactPoint>& out);
