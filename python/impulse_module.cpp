@@ -610,7 +610,8 @@ void bind(py::module_& m)
             "create_body",
             [](World& w, const py::object& shape, std::int64_t material, Real mass, Real density, bool isStatic,
                const py::object& position, const py::object& orientation, const py::object& linearVelocity,
-               const py::object& angularVelocity, const py::object& inertia, std::uint32_t group, std::uint32_t mask)
+               const py::object& angularVelocity, const py::object& inertia, const py::object& centerOfMass,
+               std::uint32_t group, std::uint32_t mask)
             {
                 BodyDef def;
                 def.type = isStatic ? BodyType::Static : BodyType::Dynamic;
@@ -623,6 +624,7 @@ void bind(py::module_& m)
                 def.linearVelocity = vec3(linearVelocity, "linear_velocity");
                 def.angularVelocity = vec3(angularVelocity, "angular_velocity");
                 def.filter = {group, mask};
+                def.centerOfMass = vec3(centerOfMass, "center_of_mass");
                 if (!inertia.is_none())
                 {
                     const Array array = asArray(inertia, "inertia");
@@ -661,8 +663,10 @@ void bind(py::module_& m)
             py::arg("orientation") = py::make_tuple(1.0, 0.0, 0.0, 0.0),
             py::arg("linear_velocity") = py::make_tuple(0.0, 0.0, 0.0),
             py::arg("angular_velocity") = py::make_tuple(0.0, 0.0, 0.0), py::arg("inertia") = py::none(),
-            py::arg("group") = 1U, py::arg("mask") = 0xffffffffU,
-            "Adds a body and returns its handle, an integer: its row in every state array.")
+            py::arg("center_of_mass") = py::make_tuple(0.0, 0.0, 0.0), py::arg("group") = 1U,
+            py::arg("mask") = 0xffffffffU,
+            "Adds a body and returns its handle, an integer: its row in every state array. `position` places "
+            "the centre of mass; `center_of_mass` is where it sits in the shape's frame.")
         .def(
             "remove_body", [](World& w, std::int64_t body) { w.removeBody(bodyId(body)); }, py::arg("body"))
         .def(
@@ -911,7 +915,7 @@ void bind(py::module_& m)
             py::arg("body"), "Columns: the principal axes in the body frame.")
         .def(
             "set_mass_properties",
-            [](World& w, std::int64_t body, Real mass, const py::object& inertia)
+            [](World& w, std::int64_t body, Real mass, const py::object& inertia, const py::object& centerOfMass)
             {
                 const Array array = asArray(inertia, "inertia");
                 Mat3 tensor = Mat3::Zero();
@@ -934,10 +938,29 @@ void bind(py::module_& m)
                     refuse("inertia",
                            "must be 3 principal moments or a 3 x 3 tensor, got an array of shape " + shapeText(array));
                 }
-                w.setMassProperties(bodyId(body), mass, tensor);
+                if (centerOfMass.is_none())
+                {
+                    w.setMassProperties(bodyId(body), mass, tensor);
+                }
+                else
+                {
+                    w.setMassProperties(bodyId(body), mass, tensor, vec3(centerOfMass, "center_of_mass"));
+                }
             },
-            py::arg("body"), py::arg("mass"), py::arg("inertia"),
-            "Mass (kg) and inertia tensor (3 x 3, or 3 principal moments) about the centre of mass, body frame.")
+            py::arg("body"), py::arg("mass"), py::arg("inertia"), py::arg("center_of_mass") = py::none(),
+            "Mass (kg) and inertia tensor (3 x 3, or 3 principal moments) about the centre of mass, body frame; "
+            "with center_of_mass, the centre of mass moves there (shape frame) and the shape stays put.")
+        .def(
+            "center_of_mass", [](const World& w, std::int64_t body) { return toArray(w.centerOfMass(bodyId(body))); },
+            py::arg("body"), "The centre of mass in the shape's frame.")
+        .def(
+            "shape_pose",
+            [](const World& w, std::int64_t body)
+            {
+                const Pose pose = w.shapePose(bodyId(body));
+                return py::make_tuple(toArray(pose.position), toArray(pose.orientation));
+            },
+            py::arg("body"), "Where the shape lies: (position, quaternion w x y z).")
         .def(
             "set_mass", [](World& w, std::int64_t body, Real mass) { w.setMass(bodyId(body), mass); }, py::arg("body"),
             py::arg("mass"))

@@ -215,7 +215,7 @@ Stage buildStage(const LoadedRun& run, const viz::Camera& camera, int width, int
     stage.settings.shadowBounds = bounds;
     for (std::size_t k = 0; k < run.view.dynamicShapes.size(); ++k)
     {
-        stage.dynamicMeshes.push_back(viz::bodyTriangles(run.view.dynamicShapes[k], viz::bodyColour(k)));
+        stage.dynamicMeshes.push_back(run.view.dynamicTriangles(k));
     }
     for (const viz::StaticBody& body : run.view.staticBodies)
     {

@@ -158,7 +158,7 @@ std::string pageData(const LoadedRun& run)
         json.raw("\"name\":").string(run.view.names[k]);
         json.raw(",\"colour\":").string(viz::hexColour(viz::bodyColour(k)));
         json.raw(",\"mesh\":");
-        writeMesh(json, viz::bodyTriangles(run.view.dynamicShapes[k], viz::bodyColour(k)));
+        writeMesh(json, run.view.dynamicTriangles(k));
         json.raw(",\"poses\":")
             .array(kept,
                    [&](std::size_t i)

@@ -38,7 +38,7 @@ struct BodyDef
     /// Principal moments of inertia, kg m^2, body frame; zero (the default): those of the shape as a
     /// solid of uniform density with the body's mass. Set by model loaders that carry their own.
     Vec3 principalInertia = Vec3::Zero();
-    Vec3 position = Vec3::Zero();        ///< centre of mass, world frame
+    Vec3 position = Vec3::Zero();        ///< centre of mass, world frame (see centerOfMass)
     Quat orientation = Quat::Identity(); ///< normalised on creation
     Vec3 linearVelocity = Vec3::Zero();  ///< world frame
     Vec3 angularVelocity = Vec3::Zero(); ///< world frame, rad/s
@@ -47,6 +47,12 @@ struct BodyDef
     /// mass is not spread as the shape's; zero (the default): principalInertia applies. Checked and
     /// diagonalised as World::setMassProperties does.
     Mat3 inertia = Mat3::Zero();
+    /// Where the centre of mass sits in the shape's own frame (m), for a body whose mass is not spread
+    /// as the shape's (a weighted die, a hull with ballast); zero (the default): the shape's centroid.
+    /// The body frame keeps the shape's axes with its origin here, so `position` places this point
+    /// and the shape lies at position - R centerOfMass (World::shapePose). The inertia, given or the
+    /// shape's own, is about this point. Dynamic bodies only.
+    Vec3 centerOfMass = Vec3::Zero();
 };
 
 /// Handle to a body of a World; bodies are numbered in creation order from 0, and a number is never

@@ -253,9 +253,13 @@ class World
     /// positive definite, its principal moments obeying the triangle inequality (I1 + I2 >= I3, as
     /// for any real body, to a relative 1e-9). The body frame stays the shape's: a tensor with
     /// products of inertia is diagonalised, I = A diag(I1, I2, I3) A^T, and the dynamics use its
-    /// principal axes A (see principalAxes). The centre of mass stays the body's origin. The linear
-    /// and angular velocity are kept, the angular momentum becomes I w.
+    /// principal axes A (see principalAxes). The centre of mass stays where it is. The linear and
+    /// angular velocity are kept, the angular momentum becomes I w.
     void setMassProperties(BodyId body, Real mass, const Mat3& inertia);
+    /// As above, and moves the centre of mass to `centerOfMass` in the shape's frame (see
+    /// BodyDef::centerOfMass). The shape stays where it is and moves as it did: the body's position
+    /// becomes the new centre and its velocity that point's velocity.
+    void setMassProperties(BodyId body, Real mass, const Mat3& inertia, const Vec3& centerOfMass);
     /// Sets the mass and scales the inertia tensor with it (the shape's density changes).
     void setMass(BodyId body, Real mass);
 
@@ -293,7 +297,12 @@ class World
     /// given a tensor with products of inertia.
     Mat3 principalAxes(BodyId body) const;
     Mat3 inertia(BodyId body) const; ///< the inertia tensor about the centre of mass, body frame, kg m^2
+    /// The centre of mass in the shape's frame (BodyDef::centerOfMass); zero unless one was given.
+    Vec3 centerOfMass(BodyId body) const;
     const Shape& shape(BodyId body) const;
+    /// Where the shape lies: the state's pose moved from the centre of mass to the shape's origin.
+    /// The state's pose itself when the centre of mass is the shape's centroid.
+    Pose shapePose(BodyId body) const;
     MaterialId material(BodyId body) const;
     const Material& material(MaterialId material) const;
     Vec3 gravity() const;

@@ -12,11 +12,14 @@ namespace impulse::io
 namespace
 {
 
-// Where the body is after a step (impulse::Pose would carry a rotation matrix no one reads here).
+// Where the body's shape is after a step, and how its origin moves: what a measurement tracks. The
+// body's own state when its centre of mass is the shape's centroid.
 BodySample sampleOf(const World& world, BodyId body)
 {
     const BodyState state = world.state(body);
-    return {state.position, state.orientation, state.linearVelocity, state.angularVelocity};
+    const Vec3 origin = world.shapePose(body).position;
+    return {origin, state.orientation, state.linearVelocity + state.angularVelocity.cross(origin - state.position),
+            state.angularVelocity};
 }
 
 // The state a fraction of the way from one step's to the next: positions and velocities linearly,
@@ -104,8 +107,11 @@ ReplayError replay(World& world, BodyId body, const StepOptions& options, const 
                                         " is not later than the one before it");
         }
     }
+    // the measurement places the shape; the world, the centre of mass
     const BodySample& first = measured.at(0, 0);
-    world.setState(body, first.position, first.orientation, first.linearVelocity, first.angularVelocity);
+    const Vec3 lever = first.orientation.normalized() * world.centerOfMass(body);
+    world.setState(body, first.position + lever, first.orientation,
+                   first.linearVelocity + first.angularVelocity.cross(lever), first.angularVelocity);
     const Real start = world.time();
     const Real t0 = measured.times[0];
 

@@ -566,8 +566,8 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
     for (std::size_t i = 0; i < bodyCount; ++i)
     {
         const Field body = bodies.item(i);
-        body.requireObject({"name", "static", "shape", "material", "mass", "density", "inertia", "position",
-                            "orientation", "velocity", "angular_velocity"});
+        body.requireObject({"name", "static", "shape", "material", "mass", "density", "inertia", "center_of_mass",
+                            "position", "orientation", "velocity", "angular_velocity"});
         BodyDef def;
         def.type = body.has("static") && body.at("static").boolean() ? BodyType::Static : BodyType::Dynamic;
         def.shape = readShape(body.at("shape"), meshes);
@@ -582,14 +582,15 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         }
         // the body frame a given inertia tensor is turned into: the mesh's principal axes
         Quat shapeFrameInBody = Quat::Identity();
+        // the scene places the shape's own frame (a mesh's: its file's); `centroid` is where the
+        // shape's frame in the World (a mesh's: its centroid on its principal axes) lies in it
+        Pose centroid;
         if (const auto* mesh = std::get_if<Mesh>(&def.shape))
         {
-            // the scene places the mesh's own frame; the body lives at its centre of mass on its
-            // principal axes
-            const Pose& frame = mesh->geometry->frameInMesh();
-            def.position += def.orientation * frame.position;
-            def.orientation = def.orientation * frame.orientation;
-            shapeFrameInBody = frame.orientation.conjugate();
+            centroid = mesh->geometry->frameInMesh();
+            def.position += def.orientation * centroid.position;
+            def.orientation = def.orientation * centroid.orientation;
+            shapeFrameInBody = centroid.orientation.conjugate();
         }
         if (def.type == BodyType::Dynamic)
         {
@@ -614,6 +615,13 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
                 const Mat3 turn = shapeFrameInBody.toRotationMatrix();
                 def.inertia = turn * body.at("inertia").inertiaTensor() * turn.transpose();
             }
+            if (body.has("center_of_mass"))
+            {
+                // given in the scene's shape frame; the World takes it in its own shape frame and the
+                // body's position at it
+                def.centerOfMass = centroid.toLocal(body.at("center_of_mass").vec3());
+                def.position += def.orientation * def.centerOfMass;
+            }
             if (body.has("velocity"))
             {
                 def.linearVelocity = body.at("velocity").vec3();
@@ -625,7 +633,7 @@ Scene parseScene(const std::string& text, const std::string& source, const std::
         }
         else
         {
-            for (const char* field : {"mass", "density", "inertia", "velocity", "angular_velocity"})
+            for (const char* field : {"mass", "density", "inertia", "center_of_mass", "velocity", "angular_velocity"})
             {
                 if (body.has(field))
                 {

@@ -199,6 +199,12 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
                     << quat(orientation) << "\" " << contact << "/>\n";
             continue;
         }
+        if (const Vec3 centerOfMass = world.centerOfMass(id); !centerOfMass.isZero(0.0))
+        {
+            // the body frame sits at the centre of mass, the shape's frame off it
+            geomPosition -= centerOfMass;
+            placedGeom = true;
+        }
         if (placedGeom)
         {
             geom += " pos=\"" + vec(geomPosition) + "\" quat=\"" + quat(geomOrientation) + "\"";

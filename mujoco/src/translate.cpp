@@ -639,46 +639,40 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         }
         const bool mesh = std::holds_alternative<Mesh>(*shape);
         Vec3 inertia = vecAt(m->body_inertia + 3 * b);
-        std::optional<Mat3> wholeTensor; // on the geom's axes, when they are not the principal axes
-        Vec3 inertialPosition = vecAt(m->body_ipos + 3 * b);
+        std::optional<Mat3> wholeTensor; // on the shape's axes, when they are not the principal axes
+        const Vec3 inertialPosition = vecAt(m->body_ipos + 3 * b);
         Quat inertialOrientation = quatAt(m->body_iquat + 4 * b);
+        // The impulse body: its origin at the compiled centre of mass, its axes the shape's (a mesh's:
+        // its principal axes as MeshGeometry finds them, placed by the geom), the compiled inertia on
+        // those axes, and the shape off the centre of mass where the geom is.
+        const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
+        Vec3 shapePosition = vecAt(m->geom_pos + 3 * g);
+        Quat shapeOrientation = geomOrientation;
         if (mesh)
         {
-            // the impulse body: the mesh's centre of mass and principal axes as MeshGeometry finds
-            // them, placed by the geom; the compiled inertia expressed on those axes
-            const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
-            const Vec3 position = vecAt(m->geom_pos + 3 * g) + geomOrientation * frame.position;
-            const Quat orientation = (geomOrientation * frame.orientation).normalized();
-            const Mat3 tensor = inertiaOnAxes(inertia, inertialOrientation, orientation);
-            const Real tolerance = kMeshFrameTolerance;
-            const Real largest = std::max<Real>(inertia.maxCoeff(), 0.0);
-            const Mat3 offDiagonal = tensor - Mat3(tensor.diagonal().asDiagonal());
-            if ((position - inertialPosition).norm() > tolerance * m->geom_rbound[g] ||
-                offDiagonal.cwiseAbs().maxCoeff() > tolerance * largest)
+            shapePosition += geomOrientation * frame.position;
+            shapeOrientation = (geomOrientation * frame.orientation).normalized();
+        }
+        Vec3 centerOfMass = Vec3::Zero(); // in the shape's frame
+        if (!centred(m, g, b) || mesh)
+        {
+            centerOfMass = shapeOrientation.conjugate() * (inertialPosition - shapePosition);
+            if (centerOfMass.norm() <= 1e-9 * std::max<Real>(1.0, m->geom_rbound[g]))
             {
-                problems.add("mesh geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
-                             " is not centred on the body's centre of mass with its axes on the principal axes "
-                             "(its inertial frame)");
-                continue;
+                centerOfMass.setZero(); // the mesh's own centroid, to round-off
+            }
+        }
+        if (mesh || !sameFrame(m, g, b))
+        {
+            const Mat3 turned = inertiaOnAxes(inertia, inertialOrientation, shapeOrientation);
+            const Mat3 tensor = 0.5 * (turned + turned.transpose());
+            const Mat3 offDiagonal = tensor - Mat3(tensor.diagonal().asDiagonal());
+            if (offDiagonal.cwiseAbs().maxCoeff() > kMeshFrameTolerance * std::max<Real>(inertia.maxCoeff(), 0.0))
+            {
+                wholeTensor = tensor; // principal axes turned from the shape's
             }
             inertia = tensor.diagonal();
-            inertialPosition = position;
-            inertialOrientation = orientation;
-        }
-        else if (!sameFrame(m, g, b))
-        {
-            if (!centred(m, g, b))
-            {
-                problems.add("geom " + nameOf(m, mjOBJ_GEOM, g) + " of free body " + nameOf(m, mjOBJ_BODY, b) +
-                             " is not centred on the body's centre of mass (its inertial frame)");
-                continue;
-            }
-            // principal axes turned from the geom's (an inertia given with products, or quat): the
-            // impulse body takes the geom's frame and the compiled inertia as a whole tensor on its axes
-            const Quat geomOrientation = quatAt(m->geom_quat + 4 * g).normalized();
-            const Mat3 turned = inertiaOnAxes(inertia, inertialOrientation, geomOrientation);
-            wholeTensor = 0.5 * (turned + turned.transpose());
-            inertialOrientation = geomOrientation;
+            inertialOrientation = shapeOrientation;
         }
         if (!(m->body_mass[b] > 0.0) || !((inertia.array() > 0.0).all()))
         {
@@ -705,6 +699,7 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         def.material = material;
         def.mass = m->body_mass[b];
         def.principalInertia = inertia;
+        def.centerOfMass = centerOfMass;
         if (wholeTensor)
         {
             def.inertia = *wholeTensor;

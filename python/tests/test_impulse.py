@@ -95,6 +95,24 @@ def test_a_full_inertia_tensor_is_diagonalised():
     np.testing.assert_allclose(axes @ np.diag(world.principal_inertia(box)) @ axes.T, tensor, atol=1e-15)
 
 
+def test_a_body_weighted_off_centre_turns_about_its_centre_of_mass():
+    world, material = free_space()
+    offset = np.array([0.05, 0.0, 0.0])
+    box = world.create_body(impulse.Box((0.1, 0.1, 0.1)), material=material, mass=1.0,
+                            angular_velocity=(0.0, 0.0, 2.0), center_of_mass=offset)
+    np.testing.assert_array_equal(world.center_of_mass(box), offset)
+    for _ in range(500):
+        world.step(dt=DT)
+    # the centre of mass stays put and the box circles it at 2 rad/s
+    angle = 2.0 * world.time
+    position, _ = world.shape_pose(box)
+    np.testing.assert_allclose(position, [-0.05 * math.cos(angle), -0.05 * math.sin(angle), 0.0], atol=1e-9)
+    np.testing.assert_allclose(world.positions()[box], [0.0, 0.0, 0.0], atol=1e-15)
+    # moved back to the box's centre: the box stays where it is
+    world.set_mass_properties(box, 1.0, world.inertia(box), center_of_mass=(0.0, 0.0, 0.0))
+    np.testing.assert_allclose(world.shape_pose(box)[0], position, atol=1e-15)
+
+
 def test_a_dropped_ball_keeps_its_energy_within_the_symplectic_bound():
     scene = impulse.load_scene(SCENES / "ball_drop_elastic.json")
     world = scene.world

@@ -49,7 +49,7 @@ Pose poseAtFraction(const RigidBody& body, const PassSettings& settings, Real fr
     {
         return body.pose();
     }
-    if (std::holds_alternative<Sphere>(body.shape))
+    if (std::holds_alternative<Sphere>(body.shape) && body.shapeCentred)
     {
         // a sphere's contacts depend on its centre alone, so its turn is not worked out: a rotation
         // per prediction is a tenth of a sphere pile's step
@@ -108,7 +108,7 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     {
         pa = poseAtFraction(a, settings, fraction);
         pb = poseAtFraction(b, settings, fraction);
-        return leastSignedDistance(a.shape, pa, b.shape, pb, narrowPhase);
+        return leastSignedDistance(a.shape, a.shapePose(pa), b.shape, b.shapePose(pb), narrowPhase);
     };
     Pose pa;
     Pose pb;
@@ -153,7 +153,7 @@ void moveToFirstTouch(const RigidBody& a, const RigidBody& b, const PassSettings
     pa = poseAtFraction(a, settings, hi);
     pb = poseAtFraction(b, settings, hi);
     scratch.clear();
-    collideShapes(a.shape, pa, b.shape, pb, kInfinity, scratch, narrowPhase);
+    collideShapes(a.shape, a.shapePose(pa), b.shape, b.shapePose(pb), kInfinity, scratch, narrowPhase);
     if (const ContactPoint* touch = deepestApproaching(a, pa, b, pb, kInfinity, scratch, settings))
     {
         contact = *touch;
@@ -398,7 +398,8 @@ Resolution resolveCollision(RigidBody& a, RigidBody& b, Real eps, Real mu, const
     for (int iteration = 0; iteration < settings.pairIterations; ++iteration)
     {
         found.clear();
-        collideShapes(a.shape, a.predicted, b.shape, b.predicted, settings.threshold, found, detection.narrowPhase);
+        collideShapes(a.shape, a.shapePose(a.predicted), b.shape, b.shapePose(b.predicted), settings.threshold, found,
+                      detection.narrowPhase);
         patch.clear();
         for (const ContactPoint& point : found)
         {

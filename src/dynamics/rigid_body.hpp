@@ -27,6 +27,14 @@ struct RigidBody
     Real invMass = 0.0;                      ///< zero for static bodies
     Vec3 principalInertia = Vec3::Zero();    ///< body frame
     Vec3 invPrincipalInertia = Vec3::Zero(); ///< body frame; zero for static bodies
+    /// Where the shape's origin sits in the body frame, whose origin is the centre of mass: minus
+    /// BodyDef::centerOfMass. Zero (and shapeCentred true) for a body whose mass is spread as its
+    /// shape's. Every geometric query places the shape at shapePose(pose), every lever arm starts
+    /// at pose.position.
+    Vec3 shapeOffset = Vec3::Zero();
+    bool shapeCentred = true;
+    /// Radius about the centre of mass of a sphere holding the shape: the shape's own bounding
+    /// radius plus |shapeOffset|, so that speed times it bounds how fast any point of the body moves.
     Real boundingRadius = 0.0;
 
     // state at time n
@@ -69,6 +77,15 @@ struct RigidBody
     bool immovable() const { return !dynamic || frozen; }
 
     Pose pose() const { return {position, orientation, rotation}; }
+    /// Where the shape lies when the body is at `at`.
+    Pose shapePose(const Pose& at) const
+    {
+        if (shapeCentred)
+        {
+            return at;
+        }
+        return {at.position + at.rotation * shapeOffset, at.orientation, at.rotation};
+    }
     /// World frame from the principal axes of inertia: `rotation` unless they differ from the body axes.
     Mat3 principalRotation() const { return principalAxesAligned ? rotation : Mat3(rotation * inertiaAxes); }
     /// Velocity of the material point at world point p, with the body placed at `at`.

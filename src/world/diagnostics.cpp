@@ -192,7 +192,8 @@ void overlapWarnings(const WorldImpl& world, const StepOptions& options, Real ex
     for (std::size_t k = 0; k < world.bodies.size(); ++k)
     {
         const RigidBody& body = world.bodies[k];
-        broad[k] = {&body.shape,  body.pose(),  body.pose(), body.boundingRadius, body.dynamic ? threshold : 0.0,
+        const Pose placed = body.shapePose(body.pose());
+        broad[k] = {&body.shape,  placed,       placed, body.boundingRadius, body.dynamic ? threshold : 0.0,
                     body.dynamic, !body.removed};
     }
     BroadPhase broadPhase;
@@ -213,7 +214,8 @@ void overlapWarnings(const WorldImpl& world, const StepOptions& options, Real ex
         }
         const RigidBody& a = world.bodies[pair.a];
         const RigidBody& b = world.bodies[pair.b];
-        const Real depth = -leastSignedDistance(a.shape, a.pose(), b.shape, b.pose(), scratch);
+        const Real depth =
+            -leastSignedDistance(a.shape, a.shapePose(a.pose()), b.shape, b.shapePose(b.pose()), scratch);
         if (depth > threshold)
         {
             overlaps.push_back({depth, pair});

@@ -359,8 +359,8 @@ bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
             continue;
         }
         const Real margin = ownMargin(body, options);
-        const Aabb now = shapeBounds(body.shape, body.pose());
-        const Aabb next = shapeBounds(body.shape, body.predicted);
+        const Aabb now = shapeBounds(body.shape, body.shapePose(body.pose()));
+        const Aabb next = shapeBounds(body.shape, body.shapePose(body.predicted));
         const Aabb& box = broadPhase.bounds(i);
         const bool fits = ((now.lower.cwiseMin(next.lower).array() - margin) >= box.lower.array()).all() &&
                           ((now.upper.cwiseMax(next.upper).array() + margin) <= box.upper.array()).all();
@@ -410,7 +410,8 @@ void WorldImpl::predictAll(const PassSettings& settings)
 
 PlacedShape WorldImpl::placed(std::uint32_t body, const Pose& pose) const
 {
-    return {&bodies[body].shape, pose, bodies[body].boundingRadius};
+    const RigidBody& placedBody = bodies[body];
+    return {&placedBody.shape, placedBody.shapePose(pose), placedBody.boundingRadius};
 }
 
 Real WorldImpl::pairReach(std::uint32_t k, const StepOptions& options) const
@@ -446,8 +447,12 @@ void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSetting
                         {
                             const RigidBody& body = bodies[i];
                             broadMargins[i] = std::max(broadMargins[i], ownMargin(body, options));
-                            broadBodies[i] = {&body.shape,         body.pose(),     body.predicted,
-                                              body.boundingRadius, broadMargins[i], body.dynamic && !body.asleep,
+                            broadBodies[i] = {&body.shape,
+                                              body.shapePose(body.pose()),
+                                              body.shapePose(body.predicted),
+                                              body.boundingRadius,
+                                              broadMargins[i],
+                                              body.dynamic && !body.asleep,
                                               !body.removed};
                         });
         broadPhase.findPairs(broadBodies, threads, pairs);

@@ -149,6 +149,13 @@ PrincipalFrame principalFrame(const Mat3& inertia)
     return frame;
 }
 
+void setCenterOfMass(RigidBody& body, const Vec3& centerOfMass)
+{
+    body.shapeOffset = -centerOfMass;
+    body.shapeCentred = centerOfMass.isZero(0.0);
+    body.boundingRadius = boundingRadius(body.shape) + centerOfMass.norm();
+}
+
 void setPrincipalFrame(RigidBody& body, const PrincipalFrame& frame)
 {
     body.principalInertia = frame.moments;
@@ -238,7 +245,9 @@ BodyId World::createBody(const BodyDef& def)
         plane->normal /= length;
         plane->offset /= length;
     }
-    body.boundingRadius = boundingRadius(body.shape);
+    require(finite(def.centerOfMass), "center_of_mass", "must be finite");
+    require(body.dynamic || def.centerOfMass.isZero(0.0), "center_of_mass", "a static body has none");
+    setCenterOfMass(body, def.centerOfMass);
 
     if (body.dynamic)
     {
@@ -537,6 +546,19 @@ void World::setMassProperties(BodyId id, Real mass, const Mat3& inertia)
     updateDerivedQuantities(body);
 }
 
+void World::setMassProperties(BodyId id, Real mass, const Mat3& inertia, const Vec3& centerOfMass)
+{
+    RigidBody& body = dynamicBody(*m_impl, id, "it has no mass properties to set");
+    require(finite(centerOfMass), "center_of_mass", "must be finite");
+    setMassProperties(id, mass, inertia);
+    // the shape stays put: the body's origin moves to the new centre, its velocity to that point's
+    const Vec3 shift = body.rotation * (centerOfMass + body.shapeOffset);
+    body.position += shift;
+    body.linearVelocity += body.angularVelocity.cross(shift);
+    setCenterOfMass(body, centerOfMass);
+    body.predicted = body.pose();
+}
+
 void World::setMass(BodyId id, Real mass)
 {
     const RigidBody& body = dynamicBody(*m_impl, id, "it has no mass to set");
@@ -701,9 +723,20 @@ Mat3 World::inertia(BodyId id) const
     return body.inertiaAxes * body.principalInertia.asDiagonal() * body.inertiaAxes.transpose();
 }
 
+Vec3 World::centerOfMass(BodyId body) const
+{
+    return -lookUp(*m_impl, body).shapeOffset;
+}
+
 const Shape& World::shape(BodyId body) const
 {
     return lookUp(*m_impl, body).shape;
+}
+
+Pose World::shapePose(BodyId id) const
+{
+    const RigidBody& body = lookUp(*m_impl, id);
+    return body.shapePose(body.pose());
 }
 
 MaterialId World::material(BodyId body) const

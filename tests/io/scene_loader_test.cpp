@@ -601,6 +601,29 @@ TEST(SceneLoader, InertiaThatNoBodyCanHaveIsRefusedWithItsPath)
     expectRefused(withInertia(R"("heavy")"), "/bodies/2/inertia", "3 x 3");
 }
 
+// ---- explicit centre of mass ------------------------------------------------------------------
+
+TEST(SceneLoader, ACentreOfMassIsGivenInTheShapesFrameAndThePositionPlacesTheShape)
+{
+    // the crate turned a quarter turn about z, its centre of mass 5 cm along its own x
+    const auto scene = parseScene(edited(R"("orientation": [1, 0, 0, 0],)",
+                                         R"("orientation": {"axis": [0, 0, 1], "angle_deg": 90},
+        "center_of_mass": [0.05, 0, 0],)"),
+                                  "test.json");
+    const impulse::BodyId crate = scene.dynamicBodies.at(1);
+    EXPECT_EQ(scene.world.centerOfMass(crate), Vec3(0.05, 0.0, 0.0));
+    EXPECT_LT((scene.world.shapePose(crate).position - Vec3(1.0, 0.0, 0.3)).norm(), 1e-15);
+    EXPECT_LT((scene.world.state(crate).position - Vec3(1.0, 0.05, 0.3)).norm(), 1e-15);
+}
+
+TEST(SceneLoader, ACentreOfMassOnAStaticBodyOrNotAVectorIsRefusedWithItsPath)
+{
+    expectRefused(edited(R"("static": true,)", R"("static": true, "center_of_mass": [0, 0, 0.1],)"),
+                  "/bodies/0/center_of_mass", "static");
+    expectRefused(edited(R"("density": 500,)", R"("density": 500, "center_of_mass": [0, 0.1],)"),
+                  "/bodies/2/center_of_mass", "3 numbers");
+}
+
 // ---- numbers that are valid JSON but make a non-finite body -----------------------------------
 
 TEST(SceneLoader, DensityWhoseMassOverflowsIsRefusedWithItsPath)
@@ -655,6 +678,23 @@ TEST(SceneLoaderMesh, TheScenePlacesTheFileFrameAndTheBodyIsAtItsCentreOfMass)
     // rotated a quarter turn about z, (0.05, 0.05, 0.03) becomes (-0.05, 0.05, 0.03); float file
     EXPECT_LT((state.position - impulse::Vec3(0.95, 2.05, 3.03)).norm(), 1e-8) << state.position.transpose();
     EXPECT_NEAR(scene.world.mass(scene.dynamicBodies.at(0)), 1000.0 * 3 * 0.06 * 0.06 * 0.06, 1e-6);
+}
+
+TEST(SceneLoaderMesh, ACentreOfMassIsGivenInTheFilesFrame)
+{
+    // the L-block's own centre of mass is (0.05, 0.05, 0.03) in its file; weighted at the file's
+    // origin, a corner, the body sits there and the mesh stays where the scene puts the file
+    const auto centred = meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj"})",
+                                   R"("position": [1, 2, 3], "orientation": {"axis": [0, 0, 1], "angle_deg": 90})");
+    const auto weighted = meshScene(R"({"type": "mesh", "file": "meshes/l_block.obj"})",
+                                    R"("position": [1, 2, 3], "orientation": {"axis": [0, 0, 1], "angle_deg": 90},
+                     "center_of_mass": [0, 0, 0])");
+    const impulse::BodyId body = weighted.dynamicBodies.at(0);
+    EXPECT_LT((weighted.world.state(body).position - Vec3(1.0, 2.0, 3.0)).norm(), 1e-12);
+    const impulse::Pose mesh = weighted.world.shapePose(body);
+    const impulse::Pose expected = centred.world.shapePose(centred.dynamicBodies.at(0));
+    EXPECT_LT((mesh.position - expected.position).norm(), 1e-12);
+    EXPECT_LT(mesh.orientation.angularDistance(expected.orientation), 1e-12);
 }
 
 TEST(SceneLoaderMesh, AnInertiaGivenOnTheFilesAxesIsTurnedOntoTheBodysPrincipalAxes)

@@ -143,7 +143,8 @@ Vec3 randomVector(std::mt19937_64& random, Real magnitude)
 }
 
 // Three bodies thrown together, spinning, with random shapes, sizes, masses, restitution and friction,
-// some at a distance from the origin so that orbital and spin momenta mix.
+// some at a distance from the origin so that orbital and spin momenta mix; in every other trial each
+// body's centre of mass is off its shape's centroid (BodyDef::centerOfMass), by up to half its size.
 TEST(Conservation, RandomSpinningCollisionsOfSpheresBoxesCapsulesAndMeshesKeepMomentum)
 {
     std::mt19937_64 random(20261205);
@@ -165,13 +166,15 @@ TEST(Conservation, RandomSpinningCollisionsOfSpheresBoxesCapsulesAndMeshesKeepMo
                 Vec3(std::cos(2.1 * k + trial), std::sin(2.1 * k + trial), 0.3 * (k - 1)).normalized();
             const Vec3 start = meetingPoint + 0.45 * direction;
             const Real speed = 0.5 + 1.5 * unit(random);
-            bodies.push_back(world.createBody({.shape = randomShape(random, kind, size),
-                                               .material = material,
-                                               .mass = 0.2 + 3.0 * unit(random),
-                                               .position = start,
-                                               .orientation = randomOrientation(random),
-                                               .linearVelocity = -speed * direction + randomVector(random, 0.2),
-                                               .angularVelocity = randomVector(random, 10.0)}));
+            bodies.push_back(world.createBody(
+                {.shape = randomShape(random, kind, size),
+                 .material = material,
+                 .mass = 0.2 + 3.0 * unit(random),
+                 .position = start,
+                 .orientation = randomOrientation(random),
+                 .linearVelocity = -speed * direction + randomVector(random, 0.2),
+                 .angularVelocity = randomVector(random, 10.0),
+                 .centerOfMass = trial % 2 == 1 ? randomVector(random, 0.5 * size) : Vec3(Vec3::Zero())}));
         }
         std::vector<Vec3> velocities0;
         for (const BodyId id : bodies)

@@ -30,8 +30,28 @@ SceneView SceneView::fromScene(const io::Scene& scene)
         view.names.push_back(name.empty() ? "body " + std::to_string(view.names.size()) : name);
         view.masses.push_back(scene.world.mass(id));
         view.inertias.push_back(scene.world.principalInertia(id));
+        view.shapeOffsets.push_back(-scene.world.centerOfMass(id));
     }
     return view;
+}
+
+TriangleMesh SceneView::dynamicTriangles(std::size_t k) const
+{
+    TriangleMesh mesh = bodyTriangles(dynamicShapes.at(k), bodyColour(k));
+    if (k < shapeOffsets.size())
+    {
+        for (Vec3& p : mesh.positions)
+        {
+            p += shapeOffsets[k];
+        }
+    }
+    return mesh;
+}
+
+Real SceneView::dynamicRadius(std::size_t k) const
+{
+    const Real offset = k < shapeOffsets.size() ? shapeOffsets[k].norm() : 0.0;
+    return boundingRadius(dynamicShapes.at(k)) + offset;
 }
 
 SceneView SceneView::markersFor(const io::Trajectory& trajectory)
@@ -70,7 +90,7 @@ Bounds sweptBounds(const io::Trajectory& trajectory, const SceneView& view)
     {
         for (std::size_t k = 0; k < trajectory.bodyCount; ++k)
         {
-            const Real r = boundingRadius(view.dynamicShapes[k]);
+            const Real r = view.dynamicRadius(k);
             low = low.cwiseMin(trajectory.at(i, k).position - Vec3::Constant(r));
             high = high.cwiseMax(trajectory.at(i, k).position + Vec3::Constant(r));
         }

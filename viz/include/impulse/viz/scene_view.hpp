@@ -5,6 +5,7 @@
 #include <impulse/io/trajectory_reader.hpp>
 #include <impulse/math.hpp>
 #include <impulse/shape.hpp>
+#include <impulse/viz/tessellate.hpp>
 
 #include <string>
 #include <vector>
@@ -30,7 +31,15 @@ struct SceneView
     std::vector<std::string> names;   ///< per dynamic body: the scene's name, or "body k"
     std::vector<Real> masses;         ///< kg, when hasMassProperties
     std::vector<Vec3> inertias;       ///< principal, body frame, when hasMassProperties
+    /// Per dynamic body: where its shape sits in the body frame, minus the centre of mass in the
+    /// shape's frame (the trajectory places the centre of mass); empty: every shape centred.
+    std::vector<Vec3> shapeOffsets;
     std::vector<StaticBody> staticBodies;
+
+    /// Trajectory body k's triangles in its body frame, its shape moved off its centre of mass.
+    TriangleMesh dynamicTriangles(std::size_t k) const;
+    /// Trajectory body k's bounding radius about its centre of mass.
+    Real dynamicRadius(std::size_t k) const;
 
     /// Everything from a loaded scene, in its current (initial) state.
     static SceneView fromScene(const io::Scene& scene);
