@@ -3,6 +3,7 @@
 // about, and the shape is where contact pushes: a ball weighted below its centre rocks on the ground
 // as a pendulum of the rolling-contact frequency, weighted above it rolls over, and a box stands
 // exactly while its centre of mass is over its base.
+#include "support/scene_run.hpp"
 #include "support/tilt.hpp"
 
 #include <impulse/world.hpp>
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <variant>
 #include <vector>
 
 namespace impulse::test
@@ -48,20 +50,21 @@ BodyId place(Ground& g, const Shape& shape, const Vec3& shapeOrigin, const Quat&
                                .centerOfMass = centerOfMass});
 }
 
-// Times at which the tilt about y crosses zero going up, over `seconds` of steps of 1 ms.
-std::vector<Real> upwardCrossings(World& world, BodyId body, Real seconds)
+// Times at which the tilt about y crosses zero going up, over `seconds` of the scene's steps.
+std::vector<Real> upwardCrossings(io::Scene& scene, BodyId body, Real seconds)
 {
     std::vector<Real> crossings;
-    const StepOptions options{.dt = 1e-3};
+    World& world = scene.world;
+    const Real dt = scene.options.dt;
     Real before = tiltAboutY(world.state(body).orientation);
-    const int steps = static_cast<int>(std::lround(seconds / options.dt));
+    const int steps = static_cast<int>(std::lround(seconds / dt));
     for (int k = 0; k < steps; ++k)
     {
-        world.step(options);
+        world.step(scene.options);
         const Real after = tiltAboutY(world.state(body).orientation);
         if (before < 0.0 && after >= 0.0)
         {
-            crossings.push_back(world.time() - options.dt * after / (after - before));
+            crossings.push_back(world.time() - dt * after / (after - before));
         }
         before = after;
     }
@@ -72,43 +75,43 @@ TEST(CenterOfMass, ABallWeightedBelowItsCentreRocksAtTheRollingPendulumFrequency
 {
     // Rolling without slipping, a ball of radius r whose centre of mass sits d below its centre turns
     // about its contact point, r - d below the centre of mass at the bottom of the swing: small
-    // rocking has w^2 = m g d / (I + m (r - d)^2). Here w = 5.75 rad/s, a period of 1.09 s; at 3
-    // degrees the amplitude lengthens it by about 1e-4, and the simulation by 3.7e-4.
-    constexpr Real r = 0.1;
-    constexpr Real d = 0.03;
-    Ground g = groundWorld(1.0);
-    const Quat tilted(Eigen::AngleAxisd(3.0 * kDegree, Vec3::UnitY()));
-    const BodyId ball = place(g, Sphere{r}, Vec3(0.0, 0.0, r), tilted, Vec3(0.0, 0.0, -d));
-    const Real inertia = g.world.principalInertia(ball).y();
+    // rocking has w^2 = m g d / (I + m (r - d)^2). In roly_poly w = 5.75 rad/s, a period of 1.09 s;
+    // at 3 degrees the amplitude lengthens it by about 1e-4, and the simulation by 3.7e-4.
+    io::Scene scene = loadReferenceScene("roly_poly");
+    const BodyId ball = scene.dynamicBodies.at(0);
+    const Real r = std::get<Sphere>(scene.world.shape(ball)).radius;
+    const Real d = -scene.world.centerOfMass(ball).z();
+    ASSERT_EQ(r, 0.1);
+    ASSERT_EQ(d, 0.03);
+    const Real inertia = scene.world.principalInertia(ball).y() / scene.world.mass(ball);
     EXPECT_DOUBLE_EQ(inertia, 0.4 * r * r); // the shape's own, about the given centre of mass
     const Real omega = std::sqrt(kG * d / (inertia + (r - d) * (r - d)));
     const Real expected = 2.0 * std::numbers::pi / omega;
 
-    const std::vector<Real> crossings = upwardCrossings(g.world, ball, 5.0);
+    const std::vector<Real> crossings = upwardCrossings(scene, ball, 5.0);
     ASSERT_GE(crossings.size(), 4U);
     const Real period = (crossings.back() - crossings.front()) / static_cast<Real>(crossings.size() - 1);
     // a ball that turned about its centroid, or a shape placed at the centre of mass, would not rock
     EXPECT_NEAR(period, expected, 1e-3 * expected);
     // and it rocks about its place: the shape's centre stays at r above the ground
-    EXPECT_NEAR(g.world.shapePose(ball).position.z(), r, 1e-4);
+    EXPECT_NEAR(scene.world.shapePose(ball).position.z(), r, 1e-4);
 }
 
 TEST(CenterOfMass, ABallWeightedAboveItsCentreRollsOverUntilTheWeightIsBelow)
 {
     // the upright ball is in unstable equilibrium; tilted by half a degree it rolls until its centre
-    // of mass is under its centre
-    constexpr Real r = 0.1;
-    Ground g = groundWorld(1.0);
-    const Quat tilted(Eigen::AngleAxisd(0.5 * kDegree, Vec3::UnitY()));
-    const BodyId ball = place(g, Sphere{r}, Vec3(0.0, 0.0, r), tilted, Vec3(0.0, 0.0, 0.03));
+    // of mass is under its centre (and, rolling without loss, on nearly to the top again)
+    io::Scene scene = loadReferenceScene("roly_poly");
+    const BodyId ball = scene.dynamicBodies.at(1);
+    ASSERT_GT(scene.world.centerOfMass(ball).z(), 0.0);
     Real largest = 0.0;
     for (int k = 0; k < 3000; ++k)
     {
-        g.world.step(StepOptions{});
-        largest = std::max(largest, tiltAngle(g.world.state(ball).orientation));
+        scene.world.step(scene.options);
+        largest = std::max(largest, tiltAngle(scene.world.state(ball).orientation));
     }
     EXPECT_GT(largest, 150.0 * kDegree);
-    EXPECT_NEAR(g.world.shapePose(ball).position.z(), r, 1e-4);
+    EXPECT_NEAR(scene.world.shapePose(ball).position.z(), 0.1, 1e-4);
 }
 
 TEST(CenterOfMass, ABoxStandsWhileItsCentreOfMassIsOverItsBaseAndTipsOnceItIsPastTheEdge)
