@@ -36,13 +36,13 @@ struct Target
 
     virtual ~Target() = default;
     virtual MeshDistance distance(const Vec3& local, Real threshold) const = 0;
+    /// The passages of the segment from a to b through the target, as parameters (enter, leave) in
+    /// [0, 1]: a passage from an end inside starts at exactly 0 or ends at exactly 1.
     virtual void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const = 0;
     /// A lower bound of phi that is cheap to know.
     virtual Real coarseLowerBound(const Vec3& local) const = 0;
     /// How far above phi a value distance() returns as not exact may lie.
     virtual Real gridError() const { return 0.0; }
-    /// A segment that leaves a convex target never enters it again.
-    virtual bool convex() const { return true; }
 
     Target(const Pose& p, const Vec3& lo, const Vec3& hi) : pose(p), lower(lo), upper(hi) {}
 };
@@ -65,7 +65,6 @@ struct MeshTarget final : Target
     }
     Real coarseLowerBound(const Vec3& local) const override { return mesh.coarseLowerBound(local); }
     Real gridError() const override { return mesh.gridError(); }
-    bool convex() const override { return false; }
 };
 
 // A solid with an analytic signed distance: exact everywhere, so phi is its own lower bound.
@@ -91,14 +90,13 @@ struct BoxTarget final : AnalyticTarget
     DistanceSample analytic(const Vec3& local) const override { return boxDistance(halfExtents, local); }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
-        // the segment's passage through the box, if both ends are outside
+        // the segment's passage through the box (from 0 or to 1 where an end is inside)
         enterLeave.clear();
         Real enter = 0.0;
         Real leave = 0.0;
-        if (clipSegmentToBox(a, b - a, -halfExtents, halfExtents, enter, leave) && enter > 0.0 && leave < 1.0 &&
-            enter < leave)
+        if (clipSegmentToBox(a, b - a, -halfExtents, halfExtents, enter, leave) && enter < leave)
         {
-            enterLeave = {enter, leave};
+            enterLeave = {std::max(enter, Real(0.0)), std::min(leave, Real(1.0))};
         }
     }
 };
@@ -115,12 +113,31 @@ struct CapsuleTarget final : AnalyticTarget
     DistanceSample analytic(const Vec3& local) const override { return capsuleDistance(capsule, local); }
     void crossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave) const override
     {
-        // phi along a line is convex: find its least value, then the two roots around it
+        // phi along a line is convex: one passage at most, around its least value
         enterLeave.clear();
         const auto phi = [&](Real t) { return analytic(a + t * (b - a)).phi; };
-        if (phi(0.0) <= 0.0 || phi(1.0) <= 0.0)
+        const auto root = [&](Real outside, Real inside)
         {
-            return; // an end inside is a sample point already
+            for (int i = 0; i < 60; ++i)
+            {
+                const Real middle = 0.5 * (outside + inside);
+                if (phi(middle) > 0.0)
+                {
+                    outside = middle;
+                }
+                else
+                {
+                    inside = middle;
+                }
+            }
+            return 0.5 * (outside + inside);
+        };
+        const bool aInside = phi(0.0) <= 0.0;
+        const bool bInside = phi(1.0) <= 0.0;
+        if (aInside || bInside)
+        {
+            enterLeave = {aInside ? 0.0 : root(0.0, 1.0), bInside ? 1.0 : root(1.0, 0.0)};
+            return;
         }
         Real lo = 0.0;
         Real hi = 1.0;
@@ -142,22 +159,6 @@ struct CapsuleTarget final : AnalyticTarget
         {
             return;
         }
-        const auto root = [&](Real outside, Real inside)
-        {
-            for (int i = 0; i < 60; ++i)
-            {
-                const Real middle = 0.5 * (outside + inside);
-                if (phi(middle) > 0.0)
-                {
-                    outside = middle;
-                }
-                else
-                {
-                    inside = middle;
-                }
-            }
-            return 0.5 * (outside + inside);
-        };
         enterLeave = {root(0.0, deepest), root(1.0, deepest)};
     }
 };
@@ -207,6 +208,7 @@ struct VertexBounds
     };
     std::vector<Real> value;
     std::vector<State> state;
+    std::vector<Real> depth;          ///< a sample point inside the target (value -infinity): its phi
     std::vector<Vec3> local;          ///< Outside: the vertex in the target's frame
     Mat3 rotation = Mat3::Identity(); ///< body frame of the vertices -> target frame
     Vec3 shift = Vec3::Zero();
@@ -282,6 +284,7 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshQueries* mesh,
     using State = VertexBounds::State;
     bounds.value.resize(vertices.size());
     bounds.state.resize(vertices.size());
+    bounds.depth.resize(vertices.size());
     bounds.local.resize(vertices.size());
     // body frame of the vertices -> target frame in one affine map
     bounds.rotation = target.pose.rotation.transpose() * pose.rotation;
@@ -326,6 +329,7 @@ void verticesAgainst(const std::vector<Vec3>& vertices, const MeshQueries* mesh,
             // inside, the vertex stands for its edges' crossings; outside but within the threshold it
             // does not, and its exact distance is its bound
             bounds.value[v] = d.phi < 0.0 ? -kInfinity : d.phi;
+            bounds.depth[v] = d.phi;
         }
         else
         {
@@ -349,14 +353,7 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
         const auto& edge = edges[e];
         const Vec3& a = vertices[edge[0]];
         const Vec3& b = vertices[edge[1]];
-        Real reach = bounds.value[edge[0]] + bounds.value[edge[1]];
-        if (reach == -kInfinity && target.convex())
-        {
-            // an end is inside, a sample point already, and the edge cannot pass through again; an
-            // edge from inside a mesh can leave it and pass through another part of it, as deep as
-            // it likes however shallow its end (crossings() gives only whole passages)
-            continue;
-        }
+        const Real reach = bounds.value[edge[0]] + bounds.value[edge[1]];
         if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
         {
             continue; // phi is 1-Lipschitz: balls of radius phi about the ends cover the edge
@@ -365,21 +362,38 @@ void edgesThrough(const std::vector<Vec3>& vertices, const Edges& edges, const T
         {
             // the bounds that wait are worked out only for an edge the cheap ones leave open; a
             // tree search for phi itself would cost about what the crossing test costs
-            reach = bounds.tighter(vertices, edge[0], target) + bounds.tighter(vertices, edge[1], target);
-            if (reach > 0.0 && reach * reach > (a - b).squaredNorm())
+            const Real tighter = bounds.tighter(vertices, edge[0], target) + bounds.tighter(vertices, edge[1], target);
+            if (tighter > 0.0 && tighter * tighter > (a - b).squaredNorm())
             {
                 continue;
             }
         }
         const Vec3 localA = rotation * a + shift;
         const Vec3 localB = rotation * b + shift;
+        // an end inside is a sample point and stands for the passage from it only as deep as it is:
+        // the edge may run on deeper (a chord under a curved or cornered surface) before it leaves
+        const bool insideA = bounds.value[edge[0]] == -kInfinity;
+        const bool insideB = bounds.value[edge[1]] == -kInfinity;
         target.crossings(localA, localB, enterLeave);
+        if (enterLeave.empty() && insideA && insideB)
+        {
+            enterLeave = {0.0, 1.0}; // no crossing between two ends inside: the edge lies inside
+        }
         for (std::size_t k = 0; k + 1 < enterLeave.size(); k += 2)
         {
             const Real t = 0.5 * (enterLeave[k] + enterLeave[k + 1]);
             const Vec3 local = localA + t * (localB - localA);
             const MeshDistance d = target.distance(local, 0.0);
-            if (d.phi < 0.0)
+            Real standIn = 0.0; // the depth of the inside end the passage starts or ends at
+            if (insideA && enterLeave[k] == 0.0)
+            {
+                standIn = std::min(standIn, bounds.depth[edge[0]]);
+            }
+            if (insideB && enterLeave[k + 1] == 1.0)
+            {
+                standIn = std::min(standIn, bounds.depth[edge[1]]);
+            }
+            if (d.phi < standIn)
             {
                 addContact(target.pose.toWorld(local), target, d, side, passageFeature(e, k / 2, side), out);
             }

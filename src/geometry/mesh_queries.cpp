@@ -191,7 +191,12 @@ void MeshQueries::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Rea
     std::vector<SegmentCrossing>& crossings = scratch.crossings;
     m_bvh->segmentCrossings(a, b, crossings);
     enterLeave.clear();
-    bool inside = false;
+    // a first crossing that leaves: a is inside, and its passage starts at 0
+    bool inside = !crossings.empty() && !crossings.front().entering;
+    if (inside)
+    {
+        enterLeave.push_back(0.0);
+    }
     for (const SegmentCrossing& crossing : crossings)
     {
         // a segment through a shared edge or corner meets several triangles at one t: only the
@@ -209,7 +214,7 @@ void MeshQueries::segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Rea
     }
     if (inside)
     {
-        enterLeave.pop_back(); // the segment ends inside: no complete passage through
+        enterLeave.push_back(1.0); // the segment ends inside: its last passage ends at 1
     }
 }
 

@@ -85,7 +85,8 @@ class MeshQueries
     Real gridError() const;
 
     /// Parameters along the segment a->b (0..1) where it enters and leaves the solid, pairwise:
-    /// (enter0, leave0, enter1, leave1, ...). Both ends should lie outside.
+    /// (enter0, leave0, enter1, leave1, ...). An end inside (told by the first crossing leaving, or
+    /// the last entering) makes its passage start at exactly 0 or end at exactly 1.
     void segmentCrossings(const Vec3& a, const Vec3& b, std::vector<Real>& enterLeave, MeshQueryScratch& scratch) const;
 
     /// Grid spacing and number of samples per axis.

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <variant>
 
 namespace impulse
 {
@@ -71,6 +72,39 @@ TEST(MeshContact, CrossedEdgesAreCaughtWhereNoVertexIsInside)
         EXPECT_LT(point.phi, 0.0);
         EXPECT_GT(point.phi, -overlap);
         EXPECT_GT(point.normal.z(), std::cos(std::numbers::pi / 4) - 1e-9);
+    }
+}
+
+TEST(MeshContact, AnEdgeRunningDeeperThanItsEndInsideIsCaughtAtItsDepth)
+{
+    // a thin bar whose near end lies just inside a cube of half side 0.1 near its +x face and whose
+    // axis runs diagonally in, under the corner region, and out through the +y face: along it the
+    // depth min(0.1 - x, 0.1 - y) grows from the end's 0.2-3 mm to 25.8 mm before it leaves. The
+    // vertices inside are shallow; the edges from them carry the depth, whichever body is the mesh.
+    const Mesh bar = meshedBox(Vec3(0.07, 0.002, 0.002));
+    const Quat turn(Eigen::AngleAxisd(0.75 * std::numbers::pi, Vec3::UnitZ())); // bar x along (-1, 1, 0)
+    const Vec3 nearEnd(0.0984, 0.05, 0.0);
+    const Pose barPose = Pose::from(nearEnd + turn * Vec3(0.07, 0.0, 0.0), turn);
+    const Pose cubePose = Pose::from(Vec3::Zero(), Quat::Identity());
+    for (const Vec3& v : bar.geometry->vertices())
+    {
+        const Vec3 p = barPose.toWorld(v);
+        const bool inside = p.cwiseAbs().maxCoeff() < 0.1;
+        ASSERT_TRUE(!inside || 0.1 - p.cwiseAbs().maxCoeff() < 3.5e-3) << "a vertex inside deeper than 3.5 mm";
+    }
+    for (const Shape& cube : {Shape(Box{Vec3::Constant(0.1)}), Shape(meshedBox(Vec3::Constant(0.1)))})
+    {
+        std::vector<ContactPoint> points;
+        NarrowPhaseScratch scratch;
+        collideShapes(bar, barPose, cube, cubePose, 1e-6, points, scratch);
+        Real least = 0.0;
+        for (const ContactPoint& point : points)
+        {
+            least = std::min(least, point.phi);
+        }
+        // the middle of the passage from the end, 25 mm deep; the ends alone would say 3 mm at most
+        EXPECT_LT(least, -0.02) << (std::holds_alternative<Box>(cube) ? "box" : "meshed box");
+        EXPECT_GT(least, -0.0258 - 0.003);
     }
 }
 

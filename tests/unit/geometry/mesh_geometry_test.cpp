@@ -400,8 +400,17 @@ TEST(MeshDistance, SegmentCrossingsOfABoxAreItsFaces)
     // through an edge of the subdivided face: still one passage
     segmentCrossings(*box, Vec3(-1.0, 0.2 / 3.0, 0.1 / 3.0), Vec3(1.0, 0.2 / 3.0, 0.1 / 3.0), enterLeave);
     EXPECT_EQ(enterLeave.size(), 2u);
-    // ending inside: no passage
+    // ending inside: the passage ends at exactly 1; starting inside, it starts at exactly 0
     segmentCrossings(*box, Vec3(-1.0, 0.0, 0.0), Vec3(0.0, 0.0, 0.0), enterLeave);
+    ASSERT_EQ(enterLeave.size(), 2u);
+    EXPECT_NEAR(enterLeave[0], 0.7, 1e-14);
+    EXPECT_EQ(enterLeave[1], 1.0);
+    segmentCrossings(*box, Vec3(0.1, 0.0, 0.0), Vec3(1.1, 0.0, 0.0), enterLeave);
+    ASSERT_EQ(enterLeave.size(), 2u);
+    EXPECT_EQ(enterLeave[0], 0.0);
+    EXPECT_NEAR(enterLeave[1], 0.2, 1e-14);
+    // inside from end to end: no crossing at all, which the caller reads with what it knows of the ends
+    segmentCrossings(*box, Vec3(-0.1, 0.0, 0.0), Vec3(0.1, 0.0, 0.0), enterLeave);
     EXPECT_TRUE(enterLeave.empty());
 }
 
