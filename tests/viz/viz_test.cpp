@@ -267,4 +267,22 @@ TEST(Series, EnergyIsTotalWithTheSceneAndPerUnitMassWithout)
     EXPECT_NE(without.energyLabel.find("per unit mass"), std::string::npos);
 }
 
+TEST(SceneView, AShapeOffItsCentreOfMassIsDrawnWhereItIs)
+{
+    // roly_poly's first ball is weighted 3 cm below its centre: the trajectory places the centre of
+    // mass, so in the body frame the sphere's triangles sit 3 cm above the origin
+    const auto scene = impulse::io::loadScene(std::string(IMPULSE_SCENES_DIR) + "/roly_poly.json");
+    const SceneView view = SceneView::fromScene(scene);
+    const TriangleMesh ball = view.dynamicTriangles(0);
+    Vec3 low = Vec3::Constant(INFINITY);
+    Vec3 high = Vec3::Constant(-INFINITY);
+    for (const Vec3& p : ball.positions)
+    {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+    }
+    EXPECT_LT((0.5 * (low + high) - Vec3(0.0, 0.0, 0.03)).norm(), 1e-12);
+    EXPECT_NEAR(view.dynamicRadius(0), 0.1 + 0.03, 1e-15);
+}
+
 } // namespace
