@@ -657,9 +657,11 @@ Translation translate(const mjModel* m, const mjData* d, const std::string& sour
         if (!centred(m, g, b) || mesh)
         {
             centerOfMass = shapeOrientation.conjugate() * (inertialPosition - shapePosition);
-            if (centerOfMass.norm() <= 1e-9 * std::max<Real>(1.0, m->geom_rbound[g]))
+            // MuJoCo finds a mesh's centroid from float vertices: within the frame tolerance of
+            // MeshGeometry's it is the same point
+            if (mesh && centerOfMass.norm() <= kMeshFrameTolerance * m->geom_rbound[g])
             {
-                centerOfMass.setZero(); // the mesh's own centroid, to round-off
+                centerOfMass.setZero();
             }
         }
         if (mesh || !sameFrame(m, g, b))
