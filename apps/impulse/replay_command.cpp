@@ -565,6 +565,33 @@ int runFit(const FitOptions& options)
     try
     {
         before = evaluate(x[0], x[1]);
+        // The error has many local minima where tosses change their outcome (a cube that lands on
+        // another face), and a local search from the template's values can stop in one far from
+        // the best: DIRECT-L (deterministic) first samples the whole box, and the local search
+        // starts from the best point it found when that beats the template's values.
+        if (options.scan > 0)
+        {
+            nlopt_opt global = nlopt_create(NLOPT_GN_DIRECT_L, 2);
+            nlopt_set_lower_bounds(global, kLower);
+            nlopt_set_upper_bounds(global, kUpper);
+            nlopt_set_min_objective(global, +objective, &state);
+            nlopt_set_maxeval(global, std::min(options.scan, options.evaluations));
+            double scanned[2] = {x[0], x[1]};
+            double best = 0.0;
+            outcome = nlopt_optimize(global, scanned, &best);
+            nlopt_destroy(global);
+            if (!state.failure.empty() || outcome < 0)
+            {
+                throw ReplayRefusal(state.failure.empty() ? "the optimiser failed (NLopt code " +
+                                                                std::to_string(static_cast<int>(outcome)) + ")"
+                                                          : state.failure);
+            }
+            if (best < before.objective)
+            {
+                x[0] = scanned[0];
+                x[1] = scanned[1];
+            }
+        }
         // The error is kinked where a contact changes its mode, and a simplex can stall against a
         // kink short of the minimum: the search starts again from the best point with a step five
         // times smaller, three times in all, within the one budget of evaluations.
@@ -640,7 +667,8 @@ int runFit(const FitOptions& options)
     json["scene"] = shared.scenePath;
     json["trajectories"] = batch.files.size();
     json["objective"] = options.objective;
-    json["optimiser"] = "NLopt LN_SBPLX";
+    json["optimiser"] = options.scan > 0 ? "NLopt GN_DIRECT_L, then LN_SBPLX" : "NLopt LN_SBPLX";
+    json["scan"] = std::min(options.scan, options.evaluations);
     json["evaluations"] = state.count;
     json["stopped"] = stopped;
     json["before"] = pointJson(before);
@@ -656,8 +684,13 @@ int runFit(const FitOptions& options)
     }
     std::cout << "fit of friction and restitution to " << batch.files.size() << " measured trajectories with "
               << shared.scenePath << "\nminimising " << objectiveName << "\n";
-    std::cout << "optimiser: NLopt Subplex (LN_SBPLX), restarted with smaller steps, " << state.count
-              << " evaluations; the last search stopped because " << stopped << "\n\n";
+    std::cout << "optimiser: "
+              << (options.scan > 0
+                      ? "NLopt DIRECT-L over the bounds (" +
+                            std::to_string(std::min(options.scan, options.evaluations)) + " evaluations), then "
+                      : std::string())
+              << "NLopt Subplex (LN_SBPLX), restarted with smaller steps, " << state.count
+              << " evaluations in all; the last search stopped because " << stopped << "\n\n";
     char line[256];
     std::snprintf(line, sizeof line, "%-8s %10s %12s %11s %13s %10s\n", "", "friction", "restitution", "position %",
                   "rotation deg", "objective");
@@ -715,6 +748,12 @@ FitCommand::FitCommand(CLI::App& app)
         ->capture_default_str();
     m_command->add_option("--max-evaluations", m_options.evaluations, "Replays of the whole set at most")
         ->check(wholeNumber(1, 100000))
+        ->capture_default_str();
+    m_command
+        ->add_option("--scan", m_options.scan,
+                     "Replays of the global look over the bounds (DIRECT-L) before the local search, within "
+                     "--max-evaluations; 0: the local search alone, from the template's values")
+        ->check(wholeNumber(0, 100000))
         ->capture_default_str();
 }
 

@@ -35,7 +35,8 @@ struct FitOptions
 {
     ReplayOptions replay;
     std::string objective = "sum"; ///< "sum" (position % + rotation degrees), "position" or "rotation"
-    int evaluations = 200;         ///< at most this many replays of the whole set
+    int evaluations = 300;         ///< at most this many replays of the whole set
+    int scan = 30;                 ///< of them, the global look (DIRECT-L) before the local search
 };
 
 /// Fits friction and restitution between the template's body and its static bodies to the
