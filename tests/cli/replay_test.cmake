@@ -171,6 +171,20 @@ if(friction GREATER_EQUAL 0.3465 AND friction LESS_EQUAL 0.3535 AND restitution 
 else()
     check_failed("fit gave friction ${friction} and restitution ${restitution}, expected 0.35 and 0.4 to 1 %: ${run_err}")
 endif()
+# the local search alone (no global look) from the same start recovers them too
+run_impulse(fit "${WORK}/synthetic" --scene "${WORK}/synthetic_template.json" --scan 0 --json -)
+expect_success()
+string(JSON friction ERROR_VARIABLE json_error GET "${run_out}" after friction)
+string(JSON restitution ERROR_VARIABLE json_error GET "${run_out}" after restitution)
+string(JSON scan ERROR_VARIABLE json_error GET "${run_out}" scan)
+if(scan EQUAL 0 AND friction GREATER_EQUAL 0.3465 AND friction LESS_EQUAL 0.3535 AND restitution GREATER_EQUAL 0.396
+   AND restitution LESS_EQUAL 0.404)
+    check_passed("fit --scan 0 recovers friction 0.35 and restitution 0.4 to 1 % (${friction}, ${restitution})")
+else()
+    check_failed("fit --scan 0 gave scan ${scan}, friction ${friction} and restitution ${restitution}: ${run_err}")
+endif()
+run_impulse(fit "${WORK}/synthetic" --scene "${WORK}/synthetic_template.json" --scan -1)
+expect_refused("a negative --scan" "--scan")
 run_impulse(fit "${WORK}/synthetic" --scene "${WORK}/two_bodies.json")
 expect_refused("fit with a template of two dynamic bodies" "two_bodies.json: a replay template has exactly one")
 
