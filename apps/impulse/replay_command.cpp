@@ -562,6 +562,33 @@ int runFit(const FitOptions& options)
     nlopt_result outcome = NLOPT_FAILURE;
     double x[2] = {std::clamp(start.friction, kLower[0], kUpper[0]),
                    std::clamp(start.restitution, kLower[1], kUpper[1])};
+    // One NLopt search over the bounds from `from` (moved to the best point found) within
+    // `evaluations`; a local search (localStep > 0) takes that first step and ends when no
+    // parameter moves by more than 1e-4. Throws when the objective or the optimiser failed.
+    const auto search = [&](nlopt_algorithm algorithm, double* from, int evaluations, double localStep, double& best)
+    {
+        nlopt_opt optimiser = nlopt_create(algorithm, 2);
+        nlopt_set_lower_bounds(optimiser, kLower);
+        nlopt_set_upper_bounds(optimiser, kUpper);
+        nlopt_set_min_objective(optimiser, +objective, &state);
+        if (localStep > 0.0)
+        {
+            const double step[2] = {localStep, localStep};
+            nlopt_set_initial_step(optimiser, step);
+            nlopt_set_xtol_abs1(optimiser, 1e-4);
+        }
+        nlopt_set_maxeval(optimiser, evaluations);
+        const nlopt_result result = nlopt_optimize(optimiser, from, &best);
+        nlopt_destroy(optimiser);
+        if (!state.failure.empty() || result < 0)
+        {
+            throw ReplayRefusal(state.failure.empty() ? "the optimiser failed (NLopt code " +
+                                                            std::to_string(static_cast<int>(result)) + ")"
+                                                      : state.failure);
+        }
+        return result;
+    };
+    const int scan = std::min(options.scan, options.evaluations);
     try
     {
         before = evaluate(x[0], x[1]);
@@ -569,23 +596,11 @@ int runFit(const FitOptions& options)
         // another face), and a local search from the template's values can stop in one far from
         // the best: DIRECT-L (deterministic) first samples the whole box, and the local search
         // starts from the best point it found when that beats the template's values.
-        if (options.scan > 0)
+        if (scan > 0)
         {
-            nlopt_opt global = nlopt_create(NLOPT_GN_DIRECT_L, 2);
-            nlopt_set_lower_bounds(global, kLower);
-            nlopt_set_upper_bounds(global, kUpper);
-            nlopt_set_min_objective(global, +objective, &state);
-            nlopt_set_maxeval(global, std::min(options.scan, options.evaluations));
             double scanned[2] = {x[0], x[1]};
             double best = 0.0;
-            outcome = nlopt_optimize(global, scanned, &best);
-            nlopt_destroy(global);
-            if (!state.failure.empty() || outcome < 0)
-            {
-                throw ReplayRefusal(state.failure.empty() ? "the optimiser failed (NLopt code " +
-                                                                std::to_string(static_cast<int>(outcome)) + ")"
-                                                          : state.failure);
-            }
+            outcome = search(NLOPT_GN_DIRECT_L, scanned, scan, 0.0, best);
             if (best < before.objective)
             {
                 x[0] = scanned[0];
@@ -602,29 +617,10 @@ int runFit(const FitOptions& options)
             {
                 break;
             }
-            nlopt_opt optimiser = nlopt_create(NLOPT_LN_SBPLX, 2);
-            nlopt_set_lower_bounds(optimiser, kLower);
-            nlopt_set_upper_bounds(optimiser, kUpper);
-            nlopt_set_min_objective(optimiser, +objective, &state);
-            const double step[2] = {stepSize, stepSize};
-            nlopt_set_initial_step(optimiser, step);
-            nlopt_set_xtol_abs1(optimiser, 1e-4);
-            nlopt_set_maxeval(optimiser, left);
             double best = 0.0;
-            outcome = nlopt_optimize(optimiser, x, &best);
-            nlopt_destroy(optimiser);
-            if (outcome < 0)
-            {
-                break;
-            }
+            outcome = search(NLOPT_LN_SBPLX, x, left, stepSize, best);
         }
         progress.clear();
-        if (!state.failure.empty() || outcome < 0)
-        {
-            throw ReplayRefusal(state.failure.empty() ? "the optimiser failed (NLopt code " +
-                                                            std::to_string(static_cast<int>(outcome)) + ")"
-                                                      : state.failure);
-        }
         after = evaluate(x[0], x[1]);
     }
     catch (const std::exception& error)
@@ -667,8 +663,8 @@ int runFit(const FitOptions& options)
     json["scene"] = shared.scenePath;
     json["trajectories"] = batch.files.size();
     json["objective"] = options.objective;
-    json["optimiser"] = options.scan > 0 ? "NLopt GN_DIRECT_L, then LN_SBPLX" : "NLopt LN_SBPLX";
-    json["scan"] = std::min(options.scan, options.evaluations);
+    json["optimiser"] = scan > 0 ? "NLopt GN_DIRECT_L, then LN_SBPLX" : "NLopt LN_SBPLX";
+    json["scan"] = scan;
     json["evaluations"] = state.count;
     json["stopped"] = stopped;
     json["before"] = pointJson(before);
@@ -685,10 +681,8 @@ int runFit(const FitOptions& options)
     std::cout << "fit of friction and restitution to " << batch.files.size() << " measured trajectories with "
               << shared.scenePath << "\nminimising " << objectiveName << "\n";
     std::cout << "optimiser: "
-              << (options.scan > 0
-                      ? "NLopt DIRECT-L over the bounds (" +
-                            std::to_string(std::min(options.scan, options.evaluations)) + " evaluations), then "
-                      : std::string())
+              << (scan > 0 ? "NLopt DIRECT-L over the bounds (" + std::to_string(scan) + " evaluations), then "
+                           : std::string())
               << "NLopt Subplex (LN_SBPLX), restarted with smaller steps, " << state.count
               << " evaluations in all; the last search stopped because " << stopped << "\n\n";
     char line[256];

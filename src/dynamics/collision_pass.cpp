@@ -49,7 +49,7 @@ Pose poseAtFraction(const RigidBody& body, const PassSettings& settings, Real fr
     {
         return body.pose();
     }
-    if (std::holds_alternative<Sphere>(body.shape) && body.shapeCentred)
+    if (std::holds_alternative<Sphere>(body.shape) && body.shapeCentred())
     {
         // a sphere's contacts depend on its centre alone, so its turn is not worked out: a rotation
         // per prediction is a tenth of a sphere pile's step

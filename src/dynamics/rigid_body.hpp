@@ -28,11 +28,9 @@ struct RigidBody
     Vec3 principalInertia = Vec3::Zero();    ///< body frame
     Vec3 invPrincipalInertia = Vec3::Zero(); ///< body frame; zero for static bodies
     /// Where the shape's origin sits in the body frame, whose origin is the centre of mass: minus
-    /// BodyDef::centerOfMass. Zero (and shapeCentred true) for a body whose mass is spread as its
-    /// shape's. Every geometric query places the shape at shapePose(pose), every lever arm starts
-    /// at pose.position.
+    /// BodyDef::centerOfMass. Zero for a body whose mass is spread as its shape's. Every geometric
+    /// query places the shape at shapePose(pose), every lever arm starts at pose.position.
     Vec3 shapeOffset = Vec3::Zero();
-    bool shapeCentred = true;
     /// Radius about the centre of mass of a sphere holding the shape: the shape's own bounding
     /// radius plus |shapeOffset|, so that speed times it bounds how fast any point of the body moves.
     Real boundingRadius = 0.0;
@@ -77,10 +75,12 @@ struct RigidBody
     bool immovable() const { return !dynamic || frozen; }
 
     Pose pose() const { return {position, orientation, rotation}; }
+    /// Whether the centre of mass is the shape's origin (the shape's pose is the body's, bit for bit).
+    bool shapeCentred() const { return shapeOffset.isZero(0.0); }
     /// Where the shape lies when the body is at `at`.
     Pose shapePose(const Pose& at) const
     {
-        if (shapeCentred)
+        if (shapeCentred())
         {
             return at;
         }

@@ -152,7 +152,6 @@ PrincipalFrame principalFrame(const Mat3& inertia)
 void setCenterOfMass(RigidBody& body, const Vec3& centerOfMass)
 {
     body.shapeOffset = -centerOfMass;
-    body.shapeCentred = centerOfMass.isZero(0.0);
     body.boundingRadius = boundingRadius(body.shape) + centerOfMass.norm();
 }
 

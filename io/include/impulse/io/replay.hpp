@@ -46,10 +46,11 @@ Real bodySize(const Shape& shape);
 /// the measurement at every later sample: the simulated pose at a sample's time is interpolated
 /// between the two steps around it (positions linearly, orientations by slerp). The position
 /// error is the distance of the centres in per cent of `size`, the rotation error the angle of the
-/// relative rotation in degrees. The measurement tracks the shape's origin (World::shapePose), which
-/// is the body's centre of mass unless the body was given another (BodyDef::centerOfMass). With `simulated`, the
-/// simulation sampled at the measured times (velocities interpolated linearly) is stored there, as a trajectory of one
-/// body. Throws std::invalid_argument for a measurement without a second sample or whose times are not increasing.
+/// relative rotation in degrees. The measurement tracks the shape's origin (World::shapePose),
+/// which is the body's centre of mass unless the body was given another (BodyDef::centerOfMass).
+/// With `simulated`, the simulation sampled at the measured times (velocities interpolated
+/// linearly) is stored there, as a trajectory of one body. Throws std::invalid_argument for a
+/// measurement without a second sample or whose times are not increasing.
 ReplayError replay(World& world, BodyId body, const StepOptions& options, const Trajectory& measured, Real size,
                    const std::string& source, Trajectory* simulated = nullptr);
 
