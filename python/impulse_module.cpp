@@ -168,6 +168,7 @@ const std::map<std::string, std::function<void(StepOptions&, const py::handle&)>
         {"time_of_impact_geometry",
          [](StepOptions& o, const py::handle& v) { o.timeOfImpactGeometry = v.cast<bool>(); }},
         {"restitution_threshold", [](StepOptions& o, const py::handle& v) { o.restitutionThreshold = v.cast<Real>(); }},
+        {"resting_approach", [](StepOptions& o, const py::handle& v) { o.restingApproach = v.cast<Real>(); }},
         {"shock_propagation", [](StepOptions& o, const py::handle& v) { o.shockPropagation = v.cast<bool>(); }},
         {"push_out", [](StepOptions& o, const py::handle& v) { o.pushOut = v.cast<bool>(); }},
         {"push_out_allowance", [](StepOptions& o, const py::handle& v) { o.pushOutAllowance = v.cast<Real>(); }},
@@ -569,6 +570,7 @@ void bind(py::module_& m)
         .def_readwrite("mid_step_restitution", &StepOptions::midStepRestitution)
         .def_readwrite("time_of_impact_geometry", &StepOptions::timeOfImpactGeometry)
         .def_readwrite("restitution_threshold", &StepOptions::restitutionThreshold)
+        .def_readwrite("resting_approach", &StepOptions::restingApproach)
         .def_readwrite("shock_propagation", &StepOptions::shockPropagation)
         .def_readwrite("push_out", &StepOptions::pushOut)
         .def_readwrite("push_out_allowance", &StepOptions::pushOutAllowance)

@@ -394,7 +394,7 @@ Material readMaterial(const Field& field)
 void readSolver(const Field& field, StepOptions& options)
 {
     field.requireObject({"scheme", "collision_iterations", "contact_iterations", "pair_iterations", "contact_thickness",
-                         "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold",
+                         "mid_step_restitution", "time_of_impact_geometry", "restitution_threshold", "resting_approach",
                          "shock_propagation", "push_out", "push_out_allowance", "push_out_speed", "push_out_iterations",
                          "sleep", "sleep_speed", "sleep_time"});
     if (field.has("scheme"))
@@ -448,6 +448,10 @@ void readSolver(const Field& field, StepOptions& options)
     if (field.has("restitution_threshold"))
     {
         options.restitutionThreshold = field.at("restitution_threshold").nonNegative();
+    }
+    if (field.has("resting_approach"))
+    {
+        options.restingApproach = field.at("resting_approach").nonNegative();
     }
     if (field.has("collision_iterations"))
     {

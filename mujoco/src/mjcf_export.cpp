@@ -273,6 +273,7 @@ std::string exportMjcf(const io::Scene& scene, Real timeconst)
     xml << "    <numeric name=\"impulse_pair_iterations\" data=\"" << o.pairIterations << "\"/>\n";
     xml << "    <numeric name=\"impulse_contact_thickness\" data=\"" << num(o.contactThickness) << "\"/>\n";
     xml << "    <numeric name=\"impulse_restitution_threshold\" data=\"" << num(o.restitutionThreshold) << "\"/>\n";
+    xml << "    <numeric name=\"impulse_resting_approach\" data=\"" << num(o.restingApproach) << "\"/>\n";
     xml << "    <numeric name=\"impulse_shock_propagation\" data=\"" << (o.shockPropagation ? 1 : 0) << "\"/>\n";
     xml << "    <numeric name=\"impulse_push_out\" data=\"" << (o.pushOut ? 1 : 0) << "\"/>\n";
     xml << "    <numeric name=\"impulse_push_out_allowance\" data=\"" << num(o.pushOutAllowance) << "\"/>\n";

@@ -184,6 +184,7 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
     number("impulse_pair_iterations", 1, 1e6, [&](Real v) { options.pairIterations = static_cast<int>(v); });
     number("impulse_contact_thickness", 0, 1e300, [&](Real v) { options.contactThickness = v; });
     number("impulse_restitution_threshold", 0, 1e300, [&](Real v) { options.restitutionThreshold = v; });
+    number("impulse_resting_approach", 0, 1e300, [&](Real v) { options.restingApproach = v; });
     number("impulse_shock_propagation", 0, 1, [&](Real v) { options.shockPropagation = v != 0.0; });
     number("impulse_push_out", 0, 1, [&](Real v) { options.pushOut = v != 0.0; });
     number("impulse_push_out_allowance", 0, 1e300, [&](Real v) { options.pushOutAllowance = v; });
@@ -213,6 +214,7 @@ void readSolverOptions(const Custom& custom, StepOptions& options, Problems& pro
                                         "impulse_pair_iterations",
                                         "impulse_contact_thickness",
                                         "impulse_restitution_threshold",
+                                        "impulse_resting_approach",
                                         "impulse_shock_propagation",
                                         "impulse_push_out",
                                         "impulse_push_out_allowance",

@@ -227,9 +227,10 @@ def test_step_options_as_an_object_or_as_keywords_are_the_same():
             scene.world.step(steps=200, **how)
         return scene.world.state_hash()
 
-    options = impulse.StepOptions(dt=2e-3, contact_iterations=5, shock_propagation=False)
+    options = impulse.StepOptions(dt=2e-3, contact_iterations=5, shock_propagation=False, resting_approach=0.5)
     assert options.scheme == "guendelman"
-    assert run(options=options) == run(dt=2e-3, contact_iterations=5, shock_propagation=False)
+    assert options.resting_approach == 0.5
+    assert run(options=options) == run(dt=2e-3, contact_iterations=5, shock_propagation=False, resting_approach=0.5)
     assert run(dt=2e-3) != run(dt=2e-3, shock_propagation=False, contact_iterations=5)
 
 

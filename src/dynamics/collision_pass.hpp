@@ -27,6 +27,7 @@ struct PassSettings
     Real threshold = 0.0;            ///< points with phi below this count as touching
     int pairIterations = 20;         ///< cap on impulses per pair per sweep
     Real restitutionThreshold = 0.0; ///< approach speeds below this get restitution 0
+    Real restingApproach = 0.0;      ///< m/s; slower approach is resting contact (StepOptions)
 };
 
 /// Relative velocity u_a - u_b at a contact point with the bodies at the given poses; in the

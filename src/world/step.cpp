@@ -64,6 +64,7 @@ PassSettings collisionSettings(const StepOptions& options, const Vec3& gravity)
     settings.predictWithAcceleration = true;
     settings.midStepRestitution = options.midStepRestitution;
     settings.timeOfImpactGeometry = options.timeOfImpactGeometry;
+    settings.restingApproach = options.restingApproach * options.dt * gravity.norm();
     return settings;
 }
 

@@ -637,6 +637,10 @@ void World::step(const StepOptions& options)
     {
         throw std::invalid_argument("restitution_threshold: must be a non-negative finite speed");
     }
+    if (!(options.restingApproach >= 0.0) || !std::isfinite(options.restingApproach))
+    {
+        throw std::invalid_argument("resting_approach: must be a non-negative finite multiple of dt |g|");
+    }
     if (options.collisionIterations < 0 || options.contactIterations < 1 || options.pairIterations < 1 ||
         options.shockIterations < 1)
     {

@@ -530,6 +530,16 @@ TEST(SceneLoader, NegativePushOutSpeedIsRefusedWithItsPath)
                   "/solver/push_out_speed", "must not be negative");
 }
 
+TEST(SceneLoader, RestingApproachIsReadAndANegativeOneRefusedWithItsPath)
+{
+    EXPECT_EQ(parseScene(edited(R"("contact_iterations": 10})", R"("contact_iterations": 10, "resting_approach": 0})"),
+                         "test.json")
+                  .options.restingApproach,
+              0.0);
+    expectRefused(edited(R"("contact_iterations": 10})", R"("contact_iterations": 10, "resting_approach": -1})"),
+                  "/solver/resting_approach", "must not be negative");
+}
+
 TEST(SceneLoader, MisspeltFieldIsRefusedWithItsPath)
 {
     expectRefused(edited(R"("position": [0, 0, 1],)", R"("positon": [0, 0, 1],)"), "/bodies/1/positon", "unknown");

@@ -162,6 +162,19 @@ const char* const kMaterialScene = R"({"name": "pairs", "dt": 0.001, "duration":
    "position": [1, 0, 0.3], "orientation": {"axis": [1, 1, 0], "angle_deg": 40}, "angular_velocity": [1, 2, 3],
    "velocity": [0.5, 0, 0], "material": "rubber"}]})";
 
+TEST(ExportRoundTrip, SolverOptionsAwayFromTheirDefaults)
+{
+    io::Scene scene = test::loadReferenceScene("ball_drop_damped");
+    scene.options.restitutionThreshold = 0.125;
+    scene.options.restingApproach = 0.25;
+    scene.options.contactThickness = 2e-6;
+    const Loaded loaded = loadExported(scene);
+    const Translation t = translate(loaded.model.get(), loaded.data.get(), "exported");
+    EXPECT_EQ(t.options.restitutionThreshold, 0.125);
+    EXPECT_EQ(t.options.restingApproach, 0.25);
+    EXPECT_EQ(t.options.contactThickness, 2e-6);
+}
+
 TEST(ExportRoundTrip, MaterialPairsAndCapsules)
 {
     io::Scene scene = io::parseScene(kMaterialScene, "pairs");
