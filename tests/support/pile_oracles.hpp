@@ -13,16 +13,25 @@
 namespace impulse::test
 {
 
-inline void expectPileOracleHolds(const std::string& name)
+/// Runs the pile's oracle to the end and expects it to hold; returns its figures.
+inline PileFigures expectPileOracleHolds(const std::string& name)
 {
     const ReferencePile* pile = findReferencePile(name);
-    ASSERT_NE(pile, nullptr) << name << " is not a reference pile";
+    if (pile == nullptr)
+    {
+        ADD_FAILURE() << name << " is not a reference pile";
+        return {};
+    }
     PileRun run = referencePileRun(*pile);
     while (!run.finished())
     {
         run.step(std::cout);
     }
-    ASSERT_FALSE(run.failure().has_value()) << *run.failure();
+    if (run.failure().has_value())
+    {
+        ADD_FAILURE() << *run.failure();
+        return run.figures();
+    }
     std::cout << name << " at the end: kinetic energy " << run.world().kineticEnergy() << " J (peak "
               << run.figures().peakKinetic << ")" << std::endl;
     for (const PileCheck& check : run.finalChecks())
@@ -30,6 +39,7 @@ inline void expectPileOracleHolds(const std::string& name)
         std::cout << name << ": " << check.what << " " << check.value << ", limit " << check.limit << std::endl;
         EXPECT_LT(check.value, check.limit) << name << ": " << check.what;
     }
+    return run.figures();
 }
 
 } // namespace impulse::test
