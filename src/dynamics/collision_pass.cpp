@@ -270,7 +270,7 @@ void thinPatch(std::vector<ContactPoint>& patch, SolverScratch& scratch)
 Real patchRestitution(const RigidBody& a, const RigidBody& b, Real eps, const std::vector<ContactPoint>& patch,
                       const PassSettings& settings)
 {
-    if (!(eps > 0.0) || !(settings.restitutionThreshold > 0.0 || settings.restingApproach > 0.0))
+    if (!(eps > 0.0))
     {
         return eps;
     }
