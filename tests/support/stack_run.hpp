@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Test support: step a stacking scene and record how far and how fast its bodies move.
+// Test support: step a stacking scene and record how far and how fast its bodies move, and what
+// the collision pass still does once it has settled.
 #pragma once
 
 #include "support/scene_run.hpp"
@@ -16,6 +17,7 @@ struct StackRecord
     Real largestDrift = 0.0;         ///< largest distance of any body from where it was at settleTime
     Real fastestAfterSettling = 0.0; ///< largest speed of any body after settleTime
     Real fastestAtEnd = 0.0;
+    long collisionImpulsesAfterSettling = 0; ///< over the steps after settleTime
 };
 
 inline StackRecord runStack(io::Scene& scene, Real dt, Real settleTime, Real duration = -1.0)
@@ -39,6 +41,10 @@ inline StackRecord runStack(io::Scene& scene, Real dt, Real settleTime, Real dur
                 {
                     settled.push_back(world.state(id).position);
                 }
+            }
+            else
+            {
+                record.collisionImpulsesAfterSettling += world.lastStepStats().collisionImpulses;
             }
             Real fastest = 0.0;
             for (std::size_t k = 0; k < scene.dynamicBodies.size(); ++k)
