@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace impulse
 {
@@ -23,11 +24,16 @@ bool finite(const Vec3& v)
     return v.allFinite();
 }
 
-void require(bool condition, const std::string& field, const std::string& what)
+[[noreturn]] void fail(std::string_view field, std::string_view what)
+{
+    throw std::invalid_argument(std::string(field) + ": " + std::string(what));
+}
+
+void require(bool condition, std::string_view field, std::string_view what)
 {
     if (!condition)
     {
-        throw std::invalid_argument(field + ": " + what);
+        fail(field, what);
     }
 }
 
@@ -70,26 +76,47 @@ std::string number(Real value)
 
 std::string vector(const Vec3& value)
 {
-    return "(" + number(value.x()) + ", " + number(value.y()) + ", " + number(value.z()) + ")";
+    std::ostringstream out;
+    out.precision(17);
+    out << '(' << value.x() << ", " << value.y() << ", " << value.z() << ')';
+    return out.str();
 }
 
 // The body a handle names, or std::invalid_argument saying why there is none.
-RigidBody& lookUp(WorldImpl& impl, BodyId id, const std::string& field = "body")
+// Every accessor goes through here, so its messages are built only on failure.
+RigidBody& lookUp(WorldImpl& impl, BodyId id, std::string_view field = "body")
 {
-    require(id.index < impl.bodies.size(), field,
-            "no body " + std::to_string(id.index) + " in this world (it has " + std::to_string(impl.bodies.size()) +
-                ")");
+    if (id.index >= impl.bodies.size())
+    {
+        fail(field, "no body " + std::to_string(id.index) + " in this world (it has " +
+                        std::to_string(impl.bodies.size()) + ")");
+    }
     RigidBody& body = impl.bodies[id.index];
-    require(!body.removed, field, "body " + std::to_string(id.index) + " was removed");
+    if (body.removed)
+    {
+        fail(field, "body " + std::to_string(id.index) + " was removed");
+    }
     return body;
 }
 
 // A dynamic body, for what only moves dynamic bodies.
-RigidBody& dynamicBody(WorldImpl& impl, BodyId id, const std::string& what)
+RigidBody& dynamicBody(WorldImpl& impl, BodyId id, std::string_view what)
 {
     RigidBody& body = lookUp(impl, id);
-    require(body.dynamic, "body", "body " + std::to_string(id.index) + " is static: " + what);
+    if (!body.dynamic)
+    {
+        fail("body", "body " + std::to_string(id.index) + " is static: " + std::string(what));
+    }
     return body;
+}
+
+// Forces and impulses are applied every step: their message is built only on failure.
+void requireFinite(const Vec3& value, std::string_view field)
+{
+    if (!finite(value))
+    {
+        fail(field, "must be finite, got " + vector(value));
+    }
 }
 
 BodyState stateOf(const RigidBody& body)
@@ -354,17 +381,17 @@ bool World::contains(BodyId id) const
 void World::applyForce(BodyId id, const Vec3& force)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    requireFinite(force, "force");
     m_impl->wake(id.index);
-    require(finite(force), "force", "must be finite, got " + vector(force));
     body.force += force;
 }
 
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "forces do not move it");
+    requireFinite(force, "force");
+    requireFinite(worldPoint, "point");
     m_impl->wake(id.index);
-    require(finite(force), "force", "must be finite, got " + vector(force));
-    require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
     body.force += force;
     body.torque += (worldPoint - body.position).cross(force);
 }
@@ -372,33 +399,33 @@ void World::applyForce(BodyId id, const Vec3& force, const Vec3& worldPoint)
 void World::applyTorque(BodyId id, const Vec3& torque)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "torques do not move it");
+    requireFinite(torque, "torque");
     m_impl->wake(id.index);
-    require(finite(torque), "torque", "must be finite, got " + vector(torque));
     body.torque += torque;
 }
 
 void World::applyImpulse(BodyId id, const Vec3& impulse)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    requireFinite(impulse, "impulse");
     m_impl->wake(id.index);
-    require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
     body.linearVelocity += body.invMass * impulse;
 }
 
 void World::applyImpulse(BodyId id, const Vec3& impulse, const Vec3& worldPoint)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    requireFinite(impulse, "impulse");
+    requireFinite(worldPoint, "point");
     m_impl->wake(id.index);
-    require(finite(impulse), "impulse", "must be finite, got " + vector(impulse));
-    require(finite(worldPoint), "point", "must be finite, got " + vector(worldPoint));
     impulse::applyImpulse(body, impulse, Vec3(worldPoint - body.position));
 }
 
 void World::applyAngularImpulse(BodyId id, const Vec3& angularImpulse)
 {
     RigidBody& body = dynamicBody(*m_impl, id, "impulses do not move it");
+    requireFinite(angularImpulse, "angular_impulse");
     m_impl->wake(id.index);
-    require(finite(angularImpulse), "angular_impulse", "must be finite, got " + vector(angularImpulse));
     body.angularMomentum += angularImpulse;
     body.angularVelocity = body.invInertiaWorld * body.angularMomentum;
 }
