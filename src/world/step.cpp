@@ -229,7 +229,7 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     broadMargins.assign(bodies.size(), 0.0);
     findCandidatePairs(options, collision);
     buildIslands();
-    refreshContacts(options, 0.0);
+    refreshContacts(options, 0.0, false);
     clock.lap(stats.milliseconds.candidatePairs);
     solveCollisions(options, collision, false);
     // a body an impulse sent beyond its box may reach bodies it was not paired with: find its pairs
@@ -241,7 +241,7 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
         keepQuietStamps(before);
         ++stats.broadPhaseRepeats;
         buildIslands();
-        refreshContacts(options, 0.0);
+        refreshContacts(options, 0.0, false);
         if (std::find(freshPairs.begin(), freshPairs.end(), 1) == freshPairs.end())
         {
             break; // no new pair: nothing new to resolve, and no body sped up further
@@ -386,7 +386,7 @@ void WorldImpl::stepTraditional(const StepOptions& options)
     updatePositions(options);
     findCandidatePairs(options, atCurrentPoseSettings(options, def.gravity, 0.0));
     buildIslands();
-    refreshContacts(options, 0.0);
+    refreshContacts(options, 0.0, true);
     assignSingleLevel();
     solveCollisions(options, atCurrentPoseSettings(options, def.gravity, 0.0), false);
     solveContacts(options, atCurrentPoseSettings(options, def.gravity, options.contactThickness));
@@ -481,13 +481,17 @@ void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSetting
     stats.candidatePairs = static_cast<int>(pairs.size());
 }
 
-void WorldImpl::refreshContacts(const StepOptions& options, Real extra)
+void WorldImpl::refreshContacts(const StepOptions& options, Real extra, bool withExact)
 {
     // every entry made usable at the predicted poses: kept where the pair has moved within its
     // reach since capture, captured anew elsewhere
     parallelFor(threads, pairs.size(),
                 [&](std::size_t k, int thread)
                 {
+                    if (!withExact && contacts.entry(k).exact)
+                    {
+                        return;
+                    }
                     const BodyPair& pair = pairs[k];
                     contacts.refresh(k, placed(pair.a, bodies[pair.a].predicted),
                                      placed(pair.b, bodies[pair.b].predicted), options.contactThickness,
@@ -719,7 +723,7 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     // with what the old poses differ by to spare
     predictAll(newVelocity);
     // a probe moves one body of a pair by dt^2 a from where the other is: at most 2 dt^2 |a| apart
-    refreshContacts(options, 2.0 * options.dt * options.dt * strongestAcceleration(bodies, def.gravity));
+    refreshContacts(options, 2.0 * options.dt * options.dt * strongestAcceleration(bodies, def.gravity), true);
 
     // every probe of every pair at once, from the contact layer: each writes its own slot
     pairProbes.assign(pairs.size(), 0);

@@ -159,7 +159,10 @@ class WorldImpl
     bool widenEscapedBoxes(const StepOptions& options);
     /// After the pairs were found again: the collision pass's quiet stamps follow their pairs.
     void keepQuietStamps(const std::vector<BodyPair>& before);
-    void refreshContacts(const StepOptions& options, Real extra);
+    /// Makes the contact layer usable at the predicted poses, with `extra` to spare (ContactCache::refresh).
+    /// With `withExact` false the exact entries are left alone: the collision pass detects their pairs
+    /// itself, and only the contact pass, which starts from their loads, needs them captured.
+    void refreshContacts(const StepOptions& options, Real extra, bool withExact);
     /// The collision pass over every island's pairs, or with `onlyNew` over the pairs found since the
     /// last run (after boxes were widened).
     void solveCollisions(const StepOptions& options, const PassSettings& settings, bool onlyNew);
