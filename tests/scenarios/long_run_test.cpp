@@ -8,7 +8,7 @@
 //   energy plus the work of gravity, and contacts, restitution at most 0.8 and friction only take
 //   energy away (the allowance is round-off of the sums);
 // - no two bodies overlap by 1 % of the smaller one's size (its bounding diameter) or more.
-// Label "long": about ten minutes on one core, one of the two longest tests (ctest starts it first).
+// Label "long": about ten minutes on one core, the longest test of the suite (ctest starts it first).
 #include "support/penetration.hpp"
 #include "support/scene_run.hpp"
 
