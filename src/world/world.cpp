@@ -76,10 +76,15 @@ std::string number(Real value)
 
 std::string vector(const Vec3& value)
 {
-    std::ostringstream out;
-    out.precision(17);
-    out << '(' << value.x() << ", " << value.y() << ", " << value.z() << ')';
-    return out.str();
+    // appended piece by piece: "(" + number(...) trips a false -Wrestrict in GCC 12
+    std::string text = "(";
+    text += number(value.x());
+    text += ", ";
+    text += number(value.y());
+    text += ", ";
+    text += number(value.z());
+    text += ')';
+    return text;
 }
 
 // The body a handle names, or std::invalid_argument saying why there is none.
