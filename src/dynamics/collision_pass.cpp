@@ -370,6 +370,23 @@ Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, co
     return un < -std::max(kSolverResolution * magnitude, settings.restingApproach) ? un : 0.0;
 }
 
+bool slowerThanRestingApproach(const RigidBody& a, const RigidBody& b, const PassSettings& settings)
+{
+    if (!(settings.restingApproach > 0.0))
+    {
+        return false;
+    }
+    // A contact point lies within a body's bounding radius of its predicted centre, or the threshold
+    // outside it; the lever centres (leverCentres) sit half the pair's relative displacement from the
+    // predicted centres when both bodies move.
+    const Real shift = a.dynamic && b.dynamic
+                           ? 0.5 * ((a.predicted.position - a.position) - (b.predicted.position - b.position)).norm()
+                           : 0.0;
+    const auto spin = [&](const RigidBody& body)
+    { return body.dynamic ? body.angularVelocity.norm() * (body.boundingRadius + shift + settings.threshold) : 0.0; };
+    return (a.linearVelocity - b.linearVelocity).norm() + spin(a) + spin(b) < settings.restingApproach;
+}
+
 // Relative velocity at a point, with the mid-step correction of the collision pass.
 Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                       const ContactPoint& contact, const PassSettings& settings)

@@ -40,6 +40,12 @@ Vec3 relativeVelocity(const RigidBody& a, const Pose& poseA, const RigidBody& b,
 Real approachSpeed(const RigidBody& a, const Pose& poseA, const RigidBody& b, const Pose& poseB,
                    const ContactPoint& point, const PassSettings& settings);
 
+/// Whether no point of the pair can approach faster than the resting approach at the predicted poses,
+/// whatever the geometry: the fastest a point can move relative to the other body (linear velocities,
+/// and the spins times the farthest a contact point lies from the lever centres) is below it. Then
+/// approachSpeed is zero at every point, and resolveCollision would find nothing to resolve.
+bool slowerThanRestingApproach(const RigidBody& a, const RigidBody& b, const PassSettings& settings);
+
 /// Pose of the body at the end of the step under the velocities this pass uses.
 Pose predictedPose(const RigidBody& body, const PassSettings& settings);
 

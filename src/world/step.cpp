@@ -630,6 +630,13 @@ int WorldImpl::resolveUnlessQuiet(std::uint32_t k, ThreadScratch& local, const S
         return 0;
     }
     const QuietStamp quiet{pass, a.motion, b.motion};
+    // Bodies that move too slowly for any point to approach past the resting approach need no look at
+    // their geometry (most of a settled pile's pairs).
+    if (slowerThanRestingApproach(a, b, settings))
+    {
+        quietPairs[k] = quiet;
+        return 0;
+    }
     // The cached points screen the pair: where none lies within what the motion since capture could
     // hide (a separation may be off by twice that) and approaches, no exact point collides either.
     ContactEntry& entry = contacts.entry(k);
