@@ -376,15 +376,17 @@ bool slowerThanRestingApproach(const RigidBody& a, const RigidBody& b, const Pas
     {
         return false;
     }
-    // A contact point lies within a body's bounding radius of its predicted centre, or the threshold
-    // outside it; the lever centres (leverCentres) sit half the pair's relative displacement from the
-    // predicted centres when both bodies move.
-    const Real shift = a.dynamic && b.dynamic
-                           ? 0.5 * ((a.predicted.position - a.position) - (b.predicted.position - b.position)).norm()
-                           : 0.0;
-    const auto spin = [&](const RigidBody& body)
-    { return body.dynamic ? body.angularVelocity.norm() * (body.boundingRadius + shift + settings.threshold) : 0.0; };
-    return (a.linearVelocity - b.linearVelocity).norm() + spin(a) + spin(b) < settings.restingApproach;
+    // A contact point lies within a body's bounding radius (plus the threshold) of its predicted
+    // centre, and approachSpeed takes its lever arm from the lever centre. A static body does not
+    // turn (and a plane's bounding radius is infinite).
+    const LeverCentres centres = leverCentres(a, a.predicted, b, b.predicted);
+    const auto spin = [&](const RigidBody& body, const Vec3& centre)
+    {
+        const Real arm = body.boundingRadius + settings.threshold + (body.predicted.position - centre).norm();
+        return body.dynamic ? body.angularVelocity.norm() * arm : 0.0;
+    };
+    return (a.linearVelocity - b.linearVelocity).norm() + spin(a, centres.a) + spin(b, centres.b) <
+           settings.restingApproach;
 }
 
 // Relative velocity at a point, with the mid-step correction of the collision pass.
