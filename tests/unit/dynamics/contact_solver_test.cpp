@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace impulse
@@ -159,6 +160,50 @@ TEST(ContactSolver, SlidingFrictionOpposesTheSlipItLeavesWhereTheBoxRespondsUnev
     EXPECT_LT(force.normalized().cross(after.normalized()).norm(), 1e-9);
     EXPECT_LT(force.dot(after), 0.0);
     EXPECT_GT(before.normalized().cross(after.normalized()).norm(), 1e-2) << "the check above can tell";
+}
+
+TEST(ContactSolver, SlidingFrictionIsOnTheConeAndOpposesTheSlipForBoxesOfEveryShapeAndPoint)
+{
+    // boxes from thin plates to long bars, touching the ground at a point anywhere under them and
+    // sliding every way: the tangent block ranges from isotropic to a thousand to one, and wherever the
+    // point slides its friction is mu times its load and antiparallel to the slip it leaves
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<Real> unit(-1.0, 1.0);
+    std::uniform_real_distribution<Real> logSide(std::log(0.01), std::log(1.0));
+    int sliding = 0;
+    int anisotropic = 0;
+    for (int trial = 0; trial < 2000; ++trial)
+    {
+        BoxBody box;
+        box.half = Vec3(std::exp(logSide(random)), std::exp(logSide(random)), std::exp(logSide(random)));
+        box.centre = Vec3(0.0, 0.0, box.half.z());
+        box.velocity = Vec3(unit(random), unit(random), -std::abs(unit(random)));
+        box.spin = Vec3(unit(random), unit(random), unit(random));
+        std::vector<SolverBody> bodies = {box.solver(), ground()};
+        const Vec3 point(box.half.x() * unit(random), box.half.y() * unit(random), 0.0);
+        ContactRow row = rowAt(box.side(0), staticSide(1), point, Vec3::UnitZ(), 0.05 + 0.5 * std::abs(unit(random)));
+        solveRow(row, bodies, kSettings);
+        const Vec3 force = row.lambda[1] * row.direction[1] + row.lambda[2] * row.direction[2];
+        const Vec3 after = slip(row, bodies[0], bodies[1]);
+        if (row.lambda[0] == 0.0)
+        {
+            continue; // the spin lifts the point: nothing to hold
+        }
+        ASSERT_LE(force.norm(), row.friction * row.lambda[0] * (1.0 + kTol)) << "trial " << trial;
+        if (after.norm() < 1e-9)
+        {
+            continue; // it sticks
+        }
+        ++sliding;
+        const std::array<Real, 6>& k = row.compliance;
+        anisotropic += std::abs(k[1] - k[3]) + 2.0 * std::abs(k[2]) > 0.5 * (k[1] + k[3]) ? 1 : 0;
+        EXPECT_NEAR(force.norm(), row.friction * row.lambda[0], kTol * row.lambda[0]) << "trial " << trial;
+        EXPECT_LT(force.normalized().cross(after.normalized()).norm(), 1e-9) << "trial " << trial;
+        EXPECT_LT(force.dot(after), 0.0) << "trial " << trial;
+    }
+    // the checks above ran on many sliding points, many of them far from isotropic
+    EXPECT_GT(sliding, 500);
+    EXPECT_GT(anisotropic, 100);
 }
 
 // A unit cube of 2 kg on four corner rows, falling at 1 m/s.
