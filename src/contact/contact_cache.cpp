@@ -202,6 +202,14 @@ bool ContactCache::refresh(std::size_t k, const PlacedShape& a, const PlacedShap
     return true;
 }
 
+void ContactCache::recapture(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real thickness, Real reach,
+                             ContactScratch& scratch)
+{
+    ContactEntry& entry = m_entries[k];
+    entry.reach = reach;
+    capture(entry, a, b, thickness + reach, scratch);
+}
+
 void ContactCache::evaluate(const ContactEntry& entry, const PlacedShape& a, const PlacedShape& b, Real threshold,
                             std::vector<ContactPoint>& out)
 {
@@ -233,8 +241,7 @@ void ContactCache::pointsAt(std::size_t k, const PlacedShape& a, const PlacedSha
     Real motion = motionSinceCapture(entry, a, b);
     if (!(motion <= entry.reach))
     {
-        entry.reach = reach;
-        capture(entry, a, b, thickness + reach, scratch);
+        recapture(k, a, b, thickness, reach, scratch);
         motion = 0.0;
     }
     evaluate(entry, a, b, threshold, out);
@@ -264,8 +271,7 @@ void ContactCache::overlapsAt(std::size_t k, const PlacedShape& a, const PlacedS
     if (-deepest > allowance && motionSinceCapture(entry, a, b) > 0.25 * allowance)
     {
         out.resize(first);
-        entry.reach = reach;
-        capture(entry, a, b, thickness + reach, scratch);
+        recapture(k, a, b, thickness, reach, scratch);
         evaluate(entry, a, b, threshold, out);
     }
 }

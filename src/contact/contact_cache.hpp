@@ -128,6 +128,10 @@ class ContactCache
     bool refresh(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real thickness, Real reach, Real extra,
                  ContactScratch& scratch);
 
+    /// Captures entry k anew at these poses with reach `reach`, whatever its motion since capture.
+    void recapture(std::size_t k, const PlacedShape& a, const PlacedShape& b, Real thickness, Real reach,
+                   ContactScratch& scratch);
+
     /// The points of pair k with the bodies at these poses whose phi is below `threshold` (at most
     /// the contact thickness): from the anchors while the entry is valid here, else detected exactly
     /// (an exact entry, or an anchored one the bodies have left, which is then captured anew here

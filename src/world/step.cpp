@@ -638,27 +638,33 @@ int WorldImpl::resolveUnlessQuiet(std::uint32_t k, ThreadScratch& local, const S
         return 0;
     }
     // The cached points screen the pair: where none lies within what the motion since capture could
-    // hide (a separation may be off by twice that) and approaches, no exact point collides either.
+    // hide (a separation may be off by twice that) and approaches, no exact point collides either. An
+    // entry the bodies have moved too far from to screen (a mesh pair keeps the least reach, and a
+    // settled pile's jitter takes it past that) is captured anew at the predicted poses first: at the
+    // pose of capture the screen is exact, the capture costs about what the exact detection below
+    // would, and the later stages then find the entry fresh instead of capturing it themselves.
     ContactEntry& entry = contacts.entry(k);
-    if (!entry.exact && entry.captured)
+    if (!entry.exact)
     {
         const PlacedShape pa = placed(pairs[k].a, a.predicted);
         const PlacedShape pb = placed(pairs[k].b, b.predicted);
-        const Real motion = contacts.motionSinceCapture(entry, pa, pb);
-        if (3.0 * motion <= entry.reach + options.contactThickness)
+        Real motion = contacts.motionSinceCapture(entry, pa, pb);
+        if (!(3.0 * motion <= entry.reach + options.contactThickness))
         {
-            local.points.clear();
-            contacts.pointsAt(k, pa, pb, 2.0 * motion + 1e-12, options.contactThickness, pairReach(k, options),
-                              local.points, local.contact);
-            const bool approaching =
-                std::any_of(local.points.begin(), local.points.end(),
-                            [&](const ContactPoint& point)
-                            { return approachSpeed(a, a.predicted, b, b.predicted, point, settings) < 0.0; });
-            if (!approaching)
-            {
-                quietPairs[k] = quiet;
-                return 0;
-            }
+            contacts.recapture(k, pa, pb, options.contactThickness, pairReach(k, options), local.contact);
+            motion = 0.0;
+        }
+        local.points.clear();
+        contacts.pointsAt(k, pa, pb, 2.0 * motion + 1e-12, options.contactThickness, pairReach(k, options),
+                          local.points, local.contact);
+        const bool approaching =
+            std::any_of(local.points.begin(), local.points.end(),
+                        [&](const ContactPoint& point)
+                        { return approachSpeed(a, a.predicted, b, b.predicted, point, settings) < 0.0; });
+        if (!approaching)
+        {
+            quietPairs[k] = quiet;
+            return 0;
         }
     }
     const Resolution done = resolveCollision(a, b, pairCoefficients[k].restitution, pairCoefficients[k].friction,
