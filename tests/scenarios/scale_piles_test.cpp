@@ -2,7 +2,7 @@
 // Reference scenes 11 and 12 at ten thousand bodies: spheres and cubes fall into a box, and none
 // leaves it or ends inside another. Five simulated seconds of ten thousand bodies take longer than
 // CI's budget: ctest label "pile", run on demand (docs/performance.md). The thousand-body piles are
-// in thousand_piles_test.cpp.
+// in piles_test.cpp and nonconvex_pile_test.cpp.
 #include "support/pile_oracles.hpp"
 
 namespace impulse::test
