@@ -129,13 +129,18 @@ std::array<Real, 2> projectOntoCone(Real k11, Real k12, Real k22, Real wanted1, 
     Real nu = std::max(0.0, leastEigenvalue * (wanted / radius - 1.0));
     Real z1 = wanted1;
     Real z2 = wanted2;
-    if (nu > 0.0)
+    // t = (K + nu 1)^-1 K wanted at the current nu
+    const auto moveToNu = [&]
     {
         const Real a = k11 + nu;
         const Real c = k22 + nu;
         const Real determinant = a * c - k12 * k12;
         z1 = (c * p - k12 * q) / determinant;
         z2 = (a * q - k12 * p) / determinant;
+    };
+    if (nu > 0.0)
+    {
+        moveToNu();
     }
     for (int iteration = 0; iteration < 30; ++iteration)
     {
@@ -156,11 +161,7 @@ std::array<Real, 2> projectOntoCone(Real k11, Real k12, Real k22, Real wanted1, 
             break;
         }
         nu += step;
-        const Real a1 = k11 + nu;
-        const Real c1 = k22 + nu;
-        const Real determinant1 = a1 * c1 - k12 * k12;
-        z1 = (c1 * p - k12 * q) / determinant1;
-        z2 = (a1 * q - k12 * p) / determinant1;
+        moveToNu();
     }
     // on the edge exactly, whatever Newton's last step left
     const Real length = std::sqrt(z1 * z1 + z2 * z2);

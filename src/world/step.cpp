@@ -648,15 +648,16 @@ int WorldImpl::resolveUnlessQuiet(std::uint32_t k, ThreadScratch& local, const S
     {
         const PlacedShape pa = placed(pairs[k].a, a.predicted);
         const PlacedShape pb = placed(pairs[k].b, b.predicted);
+        const Real reach = pairReach(k, options);
         Real motion = contacts.motionSinceCapture(entry, pa, pb);
         if (!(3.0 * motion <= entry.reach + options.contactThickness))
         {
-            contacts.recapture(k, pa, pb, options.contactThickness, pairReach(k, options), local.contact);
+            contacts.recapture(k, pa, pb, options.contactThickness, reach, local.contact);
             motion = 0.0;
         }
         local.points.clear();
-        contacts.pointsAt(k, pa, pb, 2.0 * motion + 1e-12, options.contactThickness, pairReach(k, options),
-                          local.points, local.contact);
+        contacts.pointsAt(k, pa, pb, 2.0 * motion + 1e-12, options.contactThickness, reach, local.points,
+                          local.contact);
         const bool approaching =
             std::any_of(local.points.begin(), local.points.end(),
                         [&](const ContactPoint& point)
