@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 namespace impulse
 {
@@ -49,18 +50,6 @@ std::int64_t cellCoordinate(Real x, Real origin, Real inverseCell)
     constexpr Real kFar = 1e15;
     const Real c = (x - origin) * inverseCell;
     return std::isfinite(c) ? static_cast<std::int64_t>(std::floor(std::clamp(c, -kFar, kFar))) : 0;
-}
-
-std::uint64_t mixCell(std::int64_t x, std::int64_t y, std::int64_t z)
-{
-    // three large odd multipliers and a final avalanche (splitmix64's)
-    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
-                      static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4FULL ^
-                      static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ULL;
-    h ^= h >> 31;
-    h *= 0xBF58476D1CE4E5B9ULL;
-    h ^= h >> 27;
-    return h;
 }
 
 } // namespace
@@ -134,8 +123,9 @@ void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int thread
         }
     }
 
-    std::sort(pairs.begin(), pairs.end(),
-              [](const BodyPair& l, const BodyPair& r) { return l.a < r.a || (l.a == r.a && l.b < r.b); });
+    // by (a, b) as one 64-bit integer: a comparison without branches
+    const auto key = [](const BodyPair& pair) { return std::uint64_t{pair.a} << 32 | pair.b; };
+    std::sort(pairs.begin(), pairs.end(), [&](const BodyPair& l, const BodyPair& r) { return key(l) < key(r); });
 }
 
 void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
@@ -167,82 +157,59 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     };
 
     // Each box goes into the one cell that holds its lower corner. A box spans at most a cell per
-    // axis, so two boxes that overlap have lower corners in the same or in neighbouring cells: each
-    // body is compared with the later bodies of its own cell and with the bodies of the 13
-    // neighbours on one side, which sees every such pair exactly once.
-    std::size_t buckets = 1;
-    while (buckets < 2 * m_dynamic.size())
-    {
-        buckets *= 2;
-    }
-    const auto bucketOf = [&](const std::array<std::int64_t, 3>& cell)
-    { return mixCell(cell[0], cell[1], cell[2]) & (buckets - 1); };
+    // axis, so two boxes that overlap have lower corners in the same or in neighbouring cells. The
+    // entries are sorted by cell (x, then y, then z): the three cells of a column (x, y) from z - 1 to
+    // z + 1 are then one run of the order, so each body is compared with the later bodies of its own
+    // cell and cell z + 1 of its column, and with the runs of four columns ahead, (x, y + 1) and
+    // (x + 1, y - 1 .. y + 1), which sees every pair exactly once (the other neighbours see it from
+    // their side). The run of a column ahead starts no earlier for a later body, so each column is
+    // followed by one cursor that only moves forward: the pass reads the order a few times in
+    // sequence, with no lookups at random.
     m_entries.clear();
     for (const std::uint32_t d : m_dynamic)
     {
-        const auto cell = cellOf(m_bounds[d].lower);
-        m_entries.push_back({bucketOf(cell), cell, d});
+        m_entries.push_back({cellOf(m_bounds[d].lower), d, m_bounds[d]});
     }
-    // counting sort by bucket, stable: within a bucket, bodies stay in ascending order
-    m_bucketStart.assign(buckets + 1, 0);
-    for (const CellEntry& entry : m_entries)
+    std::sort(m_entries.begin(), m_entries.end(),
+              [](const CellEntry& l, const CellEntry& r) {
+                  return std::tie(l.cell[0], l.cell[1], l.cell[2], l.body) <
+                         std::tie(r.cell[0], r.cell[1], r.cell[2], r.body);
+              });
+    const auto report = [&](const CellEntry& l, const CellEntry& r)
     {
-        ++m_bucketStart[entry.bucket + 1];
-    }
-    for (std::size_t b = 0; b < buckets; ++b)
-    {
-        m_bucketStart[b + 1] += m_bucketStart[b];
-    }
-    m_sorted.resize(m_entries.size());
-    m_bucketFill.assign(m_bucketStart.begin(), m_bucketStart.end() - 1);
-    for (const CellEntry& entry : m_entries)
-    {
-        m_sorted[m_bucketFill[entry.bucket]++] = entry;
-    }
-    const auto report = [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({std::min(i, j), std::max(i, j)}); };
-    // compared coordinate by coordinate: std::array's == calls memcmp, which took a third of this
-    // function's time in the ten-thousand-sphere pile
-    const auto sameCell = [](const std::array<std::int64_t, 3>& l, const std::array<std::int64_t, 3>& r)
-    { return l[0] == r[0] && l[1] == r[1] && l[2] == r[2]; };
-    // the neighbours on one side: the offsets (x, y, z) that come after (0, 0, 0) in lexicographic order
-    static constexpr std::array<std::array<std::int64_t, 3>, 13> kAhead{{{0, 0, 1},
-                                                                         {0, 1, -1},
-                                                                         {0, 1, 0},
-                                                                         {0, 1, 1},
-                                                                         {1, -1, -1},
-                                                                         {1, -1, 0},
-                                                                         {1, -1, 1},
-                                                                         {1, 0, -1},
-                                                                         {1, 0, 0},
-                                                                         {1, 0, 1},
-                                                                         {1, 1, -1},
-                                                                         {1, 1, 0},
-                                                                         {1, 1, 1}}};
-    for (std::uint32_t e = 0; e < m_sorted.size(); ++e)
-    {
-        const CellEntry& first = m_sorted[e];
-        const Aabb& bi = m_bounds[first.body];
-        // the later entries of the same bucket that are in the same cell
-        for (std::uint32_t f = e + 1; f < m_bucketStart[first.bucket + 1]; ++f)
+        if (overlap(l.box, r.box))
         {
-            const CellEntry& second = m_sorted[f];
-            if (sameCell(second.cell, first.cell) && overlap(bi, m_bounds[second.body]))
-            {
-                report(first.body, second.body);
-            }
+            pairs.push_back({std::min(l.body, r.body), std::max(l.body, r.body)});
         }
-        for (const auto& offset : kAhead)
+    };
+    // whether an entry's cell lies in column (x, y) at most at height z; below (x, y, z) in the order
+    const auto atMost = [](const CellEntry& e, std::int64_t x, std::int64_t y, std::int64_t z)
+    { return e.cell[0] == x && e.cell[1] == y && e.cell[2] <= z; };
+    const auto before = [](const CellEntry& e, std::int64_t x, std::int64_t y, std::int64_t z)
+    { return std::tie(e.cell[0], e.cell[1], e.cell[2]) < std::tie(x, y, z); };
+    static constexpr std::array<std::array<std::int64_t, 2>, 4> kColumnsAhead{{{0, 1}, {1, -1}, {1, 0}, {1, 1}}};
+    std::array<std::size_t, 4> cursor{};
+    const std::size_t count = m_entries.size();
+    for (std::size_t e = 0; e < count; ++e)
+    {
+        const CellEntry& first = m_entries[e];
+        const auto& [x, y, z] = first.cell;
+        for (std::size_t f = e + 1; f < count && atMost(m_entries[f], x, y, z + 1); ++f)
         {
-            const std::array<std::int64_t, 3> cell{first.cell[0] + offset[0], first.cell[1] + offset[1],
-                                                   first.cell[2] + offset[2]};
-            const std::uint64_t bucket = bucketOf(cell);
-            for (std::uint32_t f = m_bucketStart[bucket]; f < m_bucketStart[bucket + 1]; ++f)
+            report(first, m_entries[f]);
+        }
+        for (std::size_t c = 0; c < kColumnsAhead.size(); ++c)
+        {
+            const std::int64_t cx = x + kColumnsAhead[c][0];
+            const std::int64_t cy = y + kColumnsAhead[c][1];
+            std::size_t& f = cursor[c];
+            while (f < count && before(m_entries[f], cx, cy, z - 1))
             {
-                const CellEntry& second = m_sorted[f];
-                if (sameCell(second.cell, cell) && overlap(bi, m_bounds[second.body]))
-                {
-                    report(first.body, second.body);
-                }
+                ++f;
+            }
+            for (std::size_t g = f; g < count && atMost(m_entries[g], cx, cy, z + 1); ++g)
+            {
+                report(first, m_entries[g]);
             }
         }
     }

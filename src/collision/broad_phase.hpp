@@ -42,10 +42,11 @@ struct Aabb
 /// its predicted pose, grown by its own margin for what the step's impulses may add.
 ///
 /// Dynamic bodies are binned in a uniform grid whose cells are a little larger than the largest
-/// dynamic box, each by the cell of its box's lower corner. Boxes that overlap then lie in the same
-/// or in neighbouring cells, so each body is compared with the bodies of its own cell and of the 13
-/// neighbours on one side (the other 13 see it from theirs): the cost grows with the number of
-/// bodies, not its square, and every pair is met once. Static boxes are compared with every dynamic
+/// dynamic box, each by the cell of its box's lower corner, and sorted by cell. Boxes that overlap
+/// then lie in the same or in neighbouring cells, so each body is compared with the bodies of its own
+/// cell and of the 13 neighbours on one side (the other 13 see it from theirs), read as five runs of
+/// the sorted order: the cost grows with the number of bodies (and the sort's log), not its square,
+/// and every pair is met once. Static boxes are compared with every dynamic
 /// body (there are few), and planes pair with every dynamic body that comes within the margin of
 /// them. The pairs are sorted by (a, b): the order, and hence the simulation, does not depend on how
 /// the pairs were found.
@@ -61,9 +62,9 @@ class BroadPhase
   private:
     struct CellEntry
     {
-        std::uint64_t bucket = 0;              ///< hash of the cell
-        std::array<std::int64_t, 3> cell = {}; ///< integer cell coordinates
+        std::array<std::int64_t, 3> cell = {}; ///< integer cell coordinates of the box's lower corner
         std::uint32_t body = 0;
+        Aabb box; ///< a copy, so that the pass over the sorted cells reads nothing else
     };
     void pairDynamicBodies(std::vector<BodyPair>& pairs);
 
@@ -72,9 +73,6 @@ class BroadPhase
     std::vector<std::uint32_t> m_static;
     std::vector<std::uint32_t> m_planes;
     std::vector<CellEntry> m_entries;
-    std::vector<CellEntry> m_sorted;
-    std::vector<std::uint32_t> m_bucketStart;
-    std::vector<std::uint32_t> m_bucketFill;
 };
 
 /// Box that contains the shape placed at `pose` (meaningless for planes).
