@@ -739,6 +739,22 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
     // a probe moves one body of a pair by dt^2 a from where the other is: at most 2 dt^2 |a| apart
     refreshContacts(options, 2.0 * options.dt * options.dt * strongestAcceleration(bodies, def.gravity), true);
 
+    // How far a probe moves each body's points: from its old-velocity pose to its new one. A rotation
+    // by theta between unit quaternions q and p (q.p >= 0) moves a point at r by 2 r sin(theta / 2),
+    // at most 2 r |q - p|.
+    probeMoves.resize(bodies.size());
+    parallelForEach(threads, bodies.size(),
+                    [&](std::size_t i)
+                    {
+                        const Pose& from = oldPoses[i];
+                        const Pose& to = bodies[i].predicted;
+                        const Real sign = from.orientation.dot(to.orientation) < 0.0 ? -1.0 : 1.0;
+                        const Real turn = (from.orientation.coeffs() - sign * to.orientation.coeffs()).norm();
+                        probeMoves[i] = bodies[i].dynamic ? (to.position - from.position).norm() +
+                                                                2.0 * bodies[i].boundingRadius * turn
+                                                          : 0.0;
+                    });
+
     // every probe of every pair at once, from the contact layer: each writes its own slot
     pairProbes.assign(pairs.size(), 0);
     parallelFor(threads, pairs.size(),
@@ -747,7 +763,9 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
                     std::vector<ContactPoint>& points = scratch[static_cast<std::size_t>(thread)].points;
                     ContactScratch& contactScratch = scratch[static_cast<std::size_t>(thread)].contact;
                     const BodyPair& pair = pairs[k];
-                    const Real reach = pairReach(static_cast<std::uint32_t>(k), options);
+                    // an exact pair is detected at every look and needs no reach
+                    const Real reach =
+                        contacts.entry(k).exact ? 0.0 : pairReach(static_cast<std::uint32_t>(k), options);
                     const auto least = [&](const Pose& poseA, const Pose& poseB, Real threshold)
                     {
                         points.clear();
@@ -755,8 +773,17 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
                                           options.contactThickness, reach, points, contactScratch);
                         return leastPhi(points);
                     };
-                    const Real before = least(oldPoses[pair.a], oldPoses[pair.b], options.contactThickness);
+                    // A pair farther apart than twice what its probes move (a separation changes by at
+                    // most the move, and a cached one by twice that) cannot be pushed into contact by
+                    // either probe: its first look, with that much to spare, is all it needs.
+                    const Real apart = options.contactThickness + 4.0 * (probeMoves[pair.a] + probeMoves[pair.b]);
+                    const Real before = least(oldPoses[pair.a], oldPoses[pair.b], apart);
                     std::uint8_t found = before < options.contactThickness ? kTouching : 0;
+                    if (!(before < apart))
+                    {
+                        pairProbes[k] = found;
+                        return;
+                    }
                     // advance one alone with its new velocity: deeper into the other means it rests on it
                     if (bodies[pair.a].dynamic &&
                         std::min(least(bodies[pair.a].predicted, oldPoses[pair.b], 0.0), 0.0) < std::min(before, 0.0))
@@ -1151,8 +1178,9 @@ void WorldImpl::pointsToward(std::uint32_t k, std::uint32_t body, Real threshold
 {
     const BodyPair& pair = pairs[k];
     const std::size_t first = out.size();
+    const Real reach = contacts.entry(k).exact ? 0.0 : pairReach(k, options); // an exact pair needs none
     contacts.overlapsAt(k, placed(pair.a, bodies[pair.a].pose()), placed(pair.b, bodies[pair.b].pose()), threshold,
-                        options.pushOutAllowance, options.contactThickness, pairReach(k, options), out, contactScratch);
+                        options.pushOutAllowance, options.contactThickness, reach, out, contactScratch);
     if (body == pair.b)
     {
         for (std::size_t i = first; i < out.size(); ++i)

@@ -112,6 +112,7 @@ class WorldImpl
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
     std::vector<Pose> oldPoses;            ///< per body: predicted with the post-collision velocity v
+    std::vector<Real> probeMoves;          ///< per body: how far the contact graph's probe moves its points
     std::vector<SolverBody> solverBodies;  ///< per body: velocities while the contact passes solve
     std::vector<Pose> pushOrigins;         ///< per body: its pose before push-out
     std::vector<int> lastPushSweep;        ///< per body: the last push-out sweep that moved it, or -1
