@@ -165,16 +165,44 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     // their side). The run of a column ahead starts no earlier for a later body, so each column is
     // followed by one cursor that only moves forward: the pass reads the order a few times in
     // sequence, with no lookups at random.
+    // Cell coordinates count from the lowest corner, so they are >= 0; where each fits in 21 bits
+    // (two million cells a side) the three make one 63-bit key, and the sort moves 16-byte
+    // (key, body) records instead of whole entries. Otherwise the entries are sorted as they are.
+    constexpr std::int64_t kKeyBits = 21;
+    bool packable = true;
     m_entries.clear();
     for (const std::uint32_t d : m_dynamic)
     {
-        m_entries.push_back({cellOf(m_bounds[d].lower), d, m_bounds[d]});
+        const auto cell = cellOf(m_bounds[d].lower);
+        packable = packable && std::all_of(cell.begin(), cell.end(),
+                                           [](std::int64_t c) { return c >= 0 && c < (std::int64_t{1} << kKeyBits); });
+        m_entries.push_back({cell, d, m_bounds[d]});
     }
-    std::sort(m_entries.begin(), m_entries.end(),
-              [](const CellEntry& l, const CellEntry& r) {
-                  return std::tie(l.cell[0], l.cell[1], l.cell[2], l.body) <
-                         std::tie(r.cell[0], r.cell[1], r.cell[2], r.body);
-              });
+    if (packable)
+    {
+        m_keys.clear();
+        for (std::uint32_t e = 0; e < m_entries.size(); ++e)
+        {
+            const auto& cell = m_entries[e].cell;
+            const auto key = static_cast<std::uint64_t>(cell[0] << (2 * kKeyBits) | cell[1] << kKeyBits | cell[2]);
+            m_keys.push_back({key, e}); // entries are in body order, so e orders ties by body
+        }
+        std::sort(m_keys.begin(), m_keys.end());
+        m_sorted.clear();
+        for (const auto& [key, e] : m_keys)
+        {
+            m_sorted.push_back(m_entries[e]);
+        }
+        m_entries.swap(m_sorted);
+    }
+    else
+    {
+        std::sort(m_entries.begin(), m_entries.end(),
+                  [](const CellEntry& l, const CellEntry& r) {
+                      return std::tie(l.cell[0], l.cell[1], l.cell[2], l.body) <
+                             std::tie(r.cell[0], r.cell[1], r.cell[2], r.body);
+                  });
+    }
     const auto report = [&](const CellEntry& l, const CellEntry& r)
     {
         if (overlap(l.box, r.box))

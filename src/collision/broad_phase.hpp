@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace impulse
@@ -73,6 +74,8 @@ class BroadPhase
     std::vector<std::uint32_t> m_static;
     std::vector<std::uint32_t> m_planes;
     std::vector<CellEntry> m_entries;
+    std::vector<CellEntry> m_sorted;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> m_keys; ///< (cell key, entry)
 };
 
 /// Box that contains the shape placed at `pose` (meaningless for planes).
