@@ -1251,6 +1251,13 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
     // which has already been moved (or is static) and stays put, then the pairs within the level
     // share their move. One sweep settles a stack from the ground up; a second catches what the
     // two-way pairs of a level pushed back into their supports.
+    //
+    // After the first sweep a body is looked at again only where something has moved since its last
+    // look, which found it clear: itself (by a two-way pair, after its look), or what it rests on
+    // (lower levels come first, so in this sweep). The same poses give the same points, so the look
+    // it is spared would have found it clear again. Likewise a two-way pair neither of whose bodies
+    // has moved since the last sweep's look at it.
+    const auto hasMovedSince = [&](std::uint32_t i, int since) { return lastPushSweep[i] >= since; };
     bool settled = false;
     for (; sweep < options.pushOutIterations && !settled; ++sweep)
     {
@@ -1260,8 +1267,16 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
             for (std::uint32_t n = level.firstBody; n < level.endBody; ++n)
             {
                 const std::uint32_t i = island.levelBodies[n];
+                const std::span<const std::uint32_t> supports = island.supportsOf(n);
+                if (sweep > 0 && !hasMovedSince(i, sweep - 1) &&
+                    std::none_of(supports.begin(), supports.end(),
+                                 [&](std::uint32_t k)
+                                 { return hasMovedSince(pairs[k].a == i ? pairs[k].b : pairs[k].a, sweep); }))
+                {
+                    continue;
+                }
                 points.clear();
-                for (const std::uint32_t k : island.supportsOf(n))
+                for (const std::uint32_t k : supports)
                 {
                     pointsToward(k, i, 0.0, options, points, local.contact);
                 }
@@ -1274,6 +1289,11 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
             }
             for (std::uint32_t n = level.firstPair; n < level.endPair; ++n)
             {
+                const BodyPair& pair = pairs[island.twoWayPairs[n]];
+                if (sweep > 0 && !hasMovedSince(pair.a, sweep - 1) && !hasMovedSince(pair.b, sweep - 1))
+                {
+                    continue;
+                }
                 if (pushPair(island.twoWayPairs[n]))
                 {
                     settled = false;
