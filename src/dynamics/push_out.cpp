@@ -75,6 +75,31 @@ Real relaxPoint(const ContactPoint& p, PushedBody& a, PushedBody& b, Real& lambd
     return std::abs(change) * compliance;
 }
 
+/// relaxPoint for a prepared point: the same arithmetic, without working out again at every sweep
+/// what does not change during the solve.
+Real relaxPrepared(const PreparedPushPoint& p, PushedBody& a, PushedBody& b, Real& lambda)
+{
+    if (!(p.compliance > 0.0))
+    {
+        return 0.0;
+    }
+    const Real gap =
+        p.phi + (p.normal.dot(a.move) + p.leverA.dot(a.turn)) - (p.normal.dot(b.move) + p.leverB.dot(b.turn));
+    const Real updated = std::max(0.0, lambda - gap / p.compliance);
+    const Real change = updated - lambda;
+    if (change != 0.0)
+    {
+        const Vec3 onA = change * p.normal;
+        const Vec3 onB = -change * p.normal;
+        a.move += a.invMass * onA;
+        a.turn += a.invInertia * p.armA.cross(onA);
+        b.move += b.invMass * onB;
+        b.turn += b.invInertia * p.armB.cross(onB);
+        lambda = updated;
+    }
+    return std::abs(change) * p.compliance;
+}
+
 /// The least move in the mass metric with phi_i + (displacement of a - displacement of b) . n_i >= 0
 /// for every point (normals point from b toward a), by projected Gauss-Seidel on lambda_i >= 0.
 void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, PushedBody& b, std::vector<Real>& lambda)
@@ -184,11 +209,22 @@ void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPo
         }
         return slotOf[i];
     };
-    std::vector<std::array<int, 2>>& slots = scratch.pointSlots;
-    slots.clear();
+    std::vector<PreparedPushPoint>& prepared = scratch.prepared;
+    prepared.clear();
     for (const JointPoint& p : points)
     {
-        slots.push_back({slot(p.a), slot(p.b)});
+        PreparedPushPoint point;
+        point.slots = {slot(p.a), slot(p.b)};
+        const PushedBody& a = scratch.pushed[static_cast<std::size_t>(point.slots[0])];
+        const PushedBody& b = scratch.pushed[static_cast<std::size_t>(point.slots[1])];
+        point.normal = p.point.normal;
+        point.armA = p.point.point - a.centre;
+        point.armB = p.point.point - b.centre;
+        point.leverA = point.armA.cross(point.normal);
+        point.leverB = point.armB.cross(point.normal);
+        point.phi = p.point.phi;
+        point.compliance = a.compliance(p.point.point, point.normal) + b.compliance(p.point.point, point.normal);
+        prepared.push_back(point);
     }
 
     // a hundredth of the allowance: what is left is far shallower than what a push sets out to clear
@@ -199,11 +235,11 @@ void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPo
     for (int sweep = 0; sweep < kJointSolverSweeps; ++sweep)
     {
         Real largestChange = 0.0; // m: of any point's gap
-        for (std::size_t n = 0; n < points.size(); ++n)
+        for (std::size_t n = 0; n < prepared.size(); ++n)
         {
-            PushedBody& a = pushed[static_cast<std::size_t>(slots[n][0])];
-            PushedBody& b = pushed[static_cast<std::size_t>(slots[n][1])];
-            largestChange = std::max(largestChange, relaxPoint(points[n].point, a, b, lambda[n]));
+            PushedBody& a = pushed[static_cast<std::size_t>(prepared[n].slots[0])];
+            PushedBody& b = pushed[static_cast<std::size_t>(prepared[n].slots[1])];
+            largestChange = std::max(largestChange, relaxPrepared(prepared[n], a, b, lambda[n]));
         }
         if (largestChange < tolerance)
         {

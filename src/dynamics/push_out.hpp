@@ -57,17 +57,32 @@ struct JointPoint
     ContactPoint point;
 };
 
+/// A point of a joint push with what its relaxation reads at every sweep worked out once: the
+/// slots of its two bodies, its lever arms from their centres and the arms' cross products with the
+/// normal, and its compliance along the normal.
+struct PreparedPushPoint
+{
+    std::array<int, 2> slots{};
+    Vec3 normal = Vec3::Zero();
+    Vec3 armA = Vec3::Zero();
+    Vec3 armB = Vec3::Zero();
+    Vec3 leverA = Vec3::Zero(); ///< armA x normal
+    Vec3 leverB = Vec3::Zero(); ///< armB x normal
+    Real phi = 0.0;
+    Real compliance = 0.0;
+};
+
 /// What a push reuses from one call to the next (one per worker thread).
 struct PushOutScratch
 {
-    std::vector<ContactPoint> points;           ///< for the caller to gather a push's points in
-    std::vector<JointPoint> jointPoints;        ///< for the caller to gather a joint push's points in
-    std::vector<Real> lambda;                   ///< per point: how far the solution moves along its normal
-    std::vector<PushedBody> pushed;             ///< a joint push's bodies
-    std::vector<std::uint32_t> members;         ///< their indices in the world
-    std::vector<std::array<int, 2>> pointSlots; ///< per point: the slots of its two bodies
-    std::vector<std::uint32_t> moved;           ///< the bodies the last joint push moved
-    std::vector<std::uint32_t> around;          ///< for the caller: the neighbours a joint push takes in
+    std::vector<ContactPoint> points;        ///< for the caller to gather a push's points in
+    std::vector<JointPoint> jointPoints;     ///< for the caller to gather a joint push's points in
+    std::vector<Real> lambda;                ///< per point: how far the solution moves along its normal
+    std::vector<PushedBody> pushed;          ///< a joint push's bodies
+    std::vector<std::uint32_t> members;      ///< their indices in the world
+    std::vector<PreparedPushPoint> prepared; ///< a joint push's points
+    std::vector<std::uint32_t> moved;        ///< the bodies the last joint push moved
+    std::vector<std::uint32_t> around;       ///< for the caller: the neighbours a joint push takes in
 };
 
 /// Moves `body`, never its velocity or angular momentum, out of everything it rests on (the supports
