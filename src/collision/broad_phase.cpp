@@ -123,9 +123,42 @@ void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int thread
         }
     }
 
-    // by (a, b) as one 64-bit integer: a comparison without branches
-    const auto key = [](const BodyPair& pair) { return std::uint64_t{pair.a} << 32 | pair.b; };
-    std::sort(pairs.begin(), pairs.end(), [&](const BodyPair& l, const BodyPair& r) { return key(l) < key(r); });
+    sortByBodies(pairs, bodies.size());
+}
+
+void BroadPhase::sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCount)
+{
+    // Least significant digit first, a stable counting sort per digit of 8 bits: by b, then by a.
+    // Indices are below bodyCount, so only the digits that can be non-zero take a pass; the order is
+    // the one std::sort by (a, b) gives, as no two pairs are equal.
+    int digits = 0;
+    while (digits < 4 && (bodyCount - 1) >> (8 * digits) != 0)
+    {
+        ++digits;
+    }
+    m_pairBuffer.resize(pairs.size());
+    for (const bool byA : {false, true})
+    {
+        for (int digit = 0; digit < digits; ++digit)
+        {
+            const int shift = 8 * digit;
+            const auto bucket = [&](const BodyPair& pair) { return ((byA ? pair.a : pair.b) >> shift) & 0xffu; };
+            std::array<std::size_t, 257> start{};
+            for (const BodyPair& pair : pairs)
+            {
+                ++start[bucket(pair) + 1];
+            }
+            for (std::size_t d = 0; d < 256; ++d)
+            {
+                start[d + 1] += start[d];
+            }
+            for (const BodyPair& pair : pairs)
+            {
+                m_pairBuffer[start[bucket(pair)]++] = pair;
+            }
+            pairs.swap(m_pairBuffer);
+        }
+    }
 }
 
 void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)

@@ -68,6 +68,8 @@ class BroadPhase
         Aabb box; ///< a copy, so that the pass over the sorted cells reads nothing else
     };
     void pairDynamicBodies(std::vector<BodyPair>& pairs);
+    /// Sorts pairs by (a, b), indices below `bodyCount`, in linear time.
+    void sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCount);
 
     std::vector<Aabb> m_bounds;
     std::vector<std::uint32_t> m_dynamic;
@@ -76,6 +78,7 @@ class BroadPhase
     std::vector<CellEntry> m_entries;
     std::vector<CellEntry> m_sorted;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> m_keys; ///< (cell key, entry)
+    std::vector<BodyPair> m_pairBuffer;
 };
 
 /// Box that contains the shape placed at `pose` (meaningless for planes).
