@@ -237,20 +237,32 @@ int solveRows(std::span<ContactRow> rows, std::span<SolverBody> bodies, const Ro
     std::vector<std::array<Real, 3>>& direction = scratch.direction;
     std::vector<std::uint32_t>& moved = scratch.moved;
     std::vector<SolverBody>& start = scratch.start;
+    // each body once, in the order the rows first name it (only a maximum is taken over them)
     moved.clear();
+    scratch.listed.resize(bodies.size(), 0);
+    const auto list = [&](std::uint32_t i)
+    {
+        if (scratch.listed[i] == 0)
+        {
+            scratch.listed[i] = 1;
+            moved.push_back(i);
+        }
+    };
     for (const ContactRow& row : rows)
     {
         if ((row.movable & kMovesA) != 0)
         {
-            moved.push_back(row.a);
+            list(row.a);
         }
         if ((row.movable & kMovesB) != 0)
         {
-            moved.push_back(row.b);
+            list(row.b);
         }
     }
-    std::sort(moved.begin(), moved.end());
-    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    for (const std::uint32_t i : moved)
+    {
+        scratch.listed[i] = 0;
+    }
     start.resize(moved.size());
     Real previous = 0.0;
     if (accelerate)

@@ -105,6 +105,7 @@ struct SolverScratch
     std::vector<std::array<Real, 3>> before;    ///< each row's impulses before the sweep
     std::vector<std::array<Real, 3>> direction; ///< the conjugate-gradient search direction
     std::vector<std::uint32_t> moved;           ///< the bodies the rows move
+    std::vector<std::uint8_t> listed;           ///< per body: already in `moved` (all 0 between solves)
     std::vector<SolverBody> start;              ///< their velocities before the sweep
     // solveRigidPatch
     std::vector<Real> side;
