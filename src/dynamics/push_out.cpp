@@ -54,47 +54,35 @@ Real deepestOf(const std::vector<ContactPoint>& points)
     return deepest;
 }
 
-/// One projected Gauss-Seidel update of a point's pseudo-impulse `lambda` >= 0 toward phi >= 0
-/// (normal from b toward a); returns how far it changed the point's gap, m.
-Real relaxPoint(const ContactPoint& p, PushedBody& a, PushedBody& b, Real& lambda)
+/// The point `p` between a and b, prepared for relaxPoint.
+PreparedPushPoint prepare(const ContactPoint& p, const PushedBody& a, const PushedBody& b)
 {
-    const Real compliance = a.compliance(p.point, p.normal) + b.compliance(p.point, p.normal);
-    if (!(compliance > 0.0))
-    {
-        return 0.0; // both held: nothing can move this point
-    }
-    const Real gap = p.phi + a.displacement(p.point, p.normal) - b.displacement(p.point, p.normal);
-    const Real updated = std::max(0.0, lambda - gap / compliance);
-    const Real change = updated - lambda;
-    if (change != 0.0)
-    {
-        a.apply(p.point, change * p.normal);
-        b.apply(p.point, -change * p.normal);
-        lambda = updated;
-    }
-    return std::abs(change) * compliance;
+    PreparedPushPoint point;
+    point.normal = p.normal;
+    point.armA = p.point - a.centre;
+    point.armB = p.point - b.centre;
+    point.leverA = point.armA.cross(p.normal);
+    point.leverB = point.armB.cross(p.normal);
+    point.phi = p.phi;
+    point.compliance = a.compliance(point.leverA) + b.compliance(point.leverB);
+    return point;
 }
 
-/// relaxPoint for a prepared point: the same arithmetic, without working out again at every sweep
-/// what does not change during the solve.
-Real relaxPrepared(const PreparedPushPoint& p, PushedBody& a, PushedBody& b, Real& lambda)
+/// One projected Gauss-Seidel update of a point's pseudo-impulse `lambda` >= 0 toward phi >= 0
+/// (normal from b toward a); returns how far it changed the point's gap, m.
+Real relaxPoint(const PreparedPushPoint& p, PushedBody& a, PushedBody& b, Real& lambda)
 {
     if (!(p.compliance > 0.0))
     {
-        return 0.0;
+        return 0.0; // both held: nothing can move this point
     }
-    const Real gap =
-        p.phi + (p.normal.dot(a.move) + p.leverA.dot(a.turn)) - (p.normal.dot(b.move) + p.leverB.dot(b.turn));
+    const Real gap = p.phi + a.displacement(p.normal, p.leverA) - b.displacement(p.normal, p.leverB);
     const Real updated = std::max(0.0, lambda - gap / p.compliance);
     const Real change = updated - lambda;
     if (change != 0.0)
     {
-        const Vec3 onA = change * p.normal;
-        const Vec3 onB = -change * p.normal;
-        a.move += a.invMass * onA;
-        a.turn += a.invInertia * p.armA.cross(onA);
-        b.move += b.invMass * onB;
-        b.turn += b.invInertia * p.armB.cross(onB);
+        a.apply(p.armA, change * p.normal);
+        b.apply(p.armB, -change * p.normal);
         lambda = updated;
     }
     return std::abs(change) * p.compliance;
@@ -102,15 +90,22 @@ Real relaxPrepared(const PreparedPushPoint& p, PushedBody& a, PushedBody& b, Rea
 
 /// The least move in the mass metric with phi_i + (displacement of a - displacement of b) . n_i >= 0
 /// for every point (normals point from b toward a), by projected Gauss-Seidel on lambda_i >= 0.
-void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, PushedBody& b, std::vector<Real>& lambda)
+void separatingMove(const std::vector<ContactPoint>& points, PushedBody& a, PushedBody& b, PushOutScratch& scratch)
 {
+    std::vector<PreparedPushPoint>& prepared = scratch.prepared;
+    prepared.clear();
+    for (const ContactPoint& p : points)
+    {
+        prepared.push_back(prepare(p, a, b));
+    }
+    std::vector<Real>& lambda = scratch.lambda;
     lambda.assign(points.size(), 0.0);
     for (int sweep = 0; sweep < kSolverSweeps; ++sweep)
     {
         Real largestChange = 0.0; // m: of any point's gap
-        for (std::size_t i = 0; i < points.size(); ++i)
+        for (std::size_t i = 0; i < prepared.size(); ++i)
         {
-            largestChange = std::max(largestChange, relaxPoint(points[i], a, b, lambda[i]));
+            largestChange = std::max(largestChange, relaxPoint(prepared[i], a, b, lambda[i]));
         }
         if (largestChange < kSolverTolerance)
         {
@@ -156,7 +151,7 @@ bool pushOutOfSupports(RigidBody& body, const std::vector<ContactPoint>& points,
     }
     PushedBody push(body);
     PushedBody held; // the supports stay put
-    separatingMove(points, push, held, scratch.lambda);
+    separatingMove(points, push, held, scratch);
     return movePose(body, push, keptFraction(push, body, reach, depth));
 }
 
@@ -170,7 +165,7 @@ bool pushApart(RigidBody& a, RigidBody& b, const std::vector<ContactPoint>& poin
     }
     PushedBody pushA(a);
     PushedBody pushB(b);
-    separatingMove(points, pushA, pushB, scratch.lambda);
+    separatingMove(points, pushA, pushB, scratch);
     // one fraction for both, so that the pair's centre of mass still stays put
     const Real scale = std::min(keptFraction(pushA, a, reachA, depth), keptFraction(pushB, b, reachB, depth));
     const bool movedA = movePose(a, pushA, scale);
@@ -213,17 +208,10 @@ void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPo
     prepared.clear();
     for (const JointPoint& p : points)
     {
-        PreparedPushPoint point;
-        point.slots = {slot(p.a), slot(p.b)};
-        const PushedBody& a = scratch.pushed[static_cast<std::size_t>(point.slots[0])];
-        const PushedBody& b = scratch.pushed[static_cast<std::size_t>(point.slots[1])];
-        point.normal = p.point.normal;
-        point.armA = p.point.point - a.centre;
-        point.armB = p.point.point - b.centre;
-        point.leverA = point.armA.cross(point.normal);
-        point.leverB = point.armB.cross(point.normal);
-        point.phi = p.point.phi;
-        point.compliance = a.compliance(p.point.point, point.normal) + b.compliance(p.point.point, point.normal);
+        const std::array<int, 2> slots{slot(p.a), slot(p.b)}; // both first: a new slot may move the others
+        PreparedPushPoint point = prepare(p.point, scratch.pushed[static_cast<std::size_t>(slots[0])],
+                                          scratch.pushed[static_cast<std::size_t>(slots[1])]);
+        point.slots = slots;
         prepared.push_back(point);
     }
 
@@ -239,7 +227,7 @@ void pushApartTogether(std::vector<RigidBody>& bodies, const std::vector<JointPo
         {
             PushedBody& a = pushed[static_cast<std::size_t>(prepared[n].slots[0])];
             PushedBody& b = pushed[static_cast<std::size_t>(prepared[n].slots[1])];
-            largestChange = std::max(largestChange, relaxPrepared(prepared[n], a, b, lambda[n]));
+            largestChange = std::max(largestChange, relaxPoint(prepared[n], a, b, lambda[n]));
         }
         if (largestChange < tolerance)
         {

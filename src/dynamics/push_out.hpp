@@ -28,20 +28,18 @@ struct PushedBody
     {
     }
 
-    /// How far the point at `p` moves along `n` under the move so far.
-    Real displacement(const Vec3& p, const Vec3& n) const { return n.dot(move) + (p - centre).cross(n).dot(turn); }
+    /// How far a point moves along `n` under the move so far; `lever` is its arm from the centre
+    /// crossed with `n`.
+    Real displacement(const Vec3& n, const Vec3& lever) const { return n.dot(move) + lever.dot(turn); }
 
-    /// Normal displacement at `p` per unit pseudo-impulse along `n`.
-    Real compliance(const Vec3& p, const Vec3& n) const
-    {
-        const Vec3 lever = (p - centre).cross(n);
-        return invMass + lever.dot(invInertia * lever);
-    }
+    /// Normal displacement of a point per unit pseudo-impulse along its normal, by its `lever`.
+    Real compliance(const Vec3& lever) const { return invMass + lever.dot(invInertia * lever); }
 
-    void apply(const Vec3& p, const Vec3& pseudoImpulse)
+    /// Applies a pseudo-impulse at the point `arm` from the centre.
+    void apply(const Vec3& arm, const Vec3& pseudoImpulse)
     {
         move += invMass * pseudoImpulse;
-        turn += invInertia * (p - centre).cross(pseudoImpulse);
+        turn += invInertia * arm.cross(pseudoImpulse);
     }
 
     /// How far the body's farthest point moves, to first order.
@@ -57,9 +55,9 @@ struct JointPoint
     ContactPoint point;
 };
 
-/// A point of a joint push with what its relaxation reads at every sweep worked out once: the
-/// slots of its two bodies, its lever arms from their centres and the arms' cross products with the
-/// normal, and its compliance along the normal.
+/// A point of a push with what its relaxation reads at every sweep worked out once: its arms from
+/// the two bodies' centres and their cross products with the normal, and its compliance along the
+/// normal; in a joint push also the slots of its two bodies.
 struct PreparedPushPoint
 {
     std::array<int, 2> slots{};
@@ -80,7 +78,7 @@ struct PushOutScratch
     std::vector<Real> lambda;                ///< per point: how far the solution moves along its normal
     std::vector<PushedBody> pushed;          ///< a joint push's bodies
     std::vector<std::uint32_t> members;      ///< their indices in the world
-    std::vector<PreparedPushPoint> prepared; ///< a joint push's points
+    std::vector<PreparedPushPoint> prepared; ///< a push's points, prepared
     std::vector<std::uint32_t> moved;        ///< the bodies the last joint push moved
     std::vector<std::uint32_t> around;       ///< for the caller: the neighbours a joint push takes in
 };

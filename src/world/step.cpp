@@ -773,9 +773,9 @@ void WorldImpl::buildContactGraph(const StepOptions& options)
                                           options.contactThickness, reach, points, contactScratch);
                         return leastPhi(points);
                     };
-                    // A pair farther apart than twice what its probes move (a separation changes by at
-                    // most the move, and a cached one by twice that) cannot be pushed into contact by
-                    // either probe: its first look, with that much to spare, is all it needs.
+                    // A separation changes by at most what a probe moves the points, a cached one by
+                    // twice that: a pair farther apart than twice that again, for both probes, cannot be
+                    // pushed into contact by either, and its first look is all it needs.
                     const Real apart = options.contactThickness + 4.0 * (probeMoves[pair.a] + probeMoves[pair.b]);
                     const Real before = least(oldPoses[pair.a], oldPoses[pair.b], apart);
                     std::uint8_t found = before < options.contactThickness ? kTouching : 0;
@@ -1321,7 +1321,7 @@ int WorldImpl::pushOutIsland(const Island& island, ThreadScratch& local, const S
         for (const std::uint32_t k : island.pairs)
         {
             const BodyPair& pair = pairs[k];
-            if (std::max(lastPushSweep[pair.a], lastPushSweep[pair.b]) < movedSince)
+            if (!hasMovedSince(pair.a, movedSince) && !hasMovedSince(pair.b, movedSince))
             {
                 continue;
             }
