@@ -61,17 +61,13 @@ void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int thread
     parallelForEach(threads, bodies.size(),
                     [&](std::size_t i)
                     {
-                        const BroadPhaseBody& body = bodies[i];
-                        if (std::holds_alternative<Plane>(*body.shape))
+                        if (!std::holds_alternative<Plane>(*bodies[i].shape))
                         {
-                            return;
+                            m_bounds[i] = boxOf(bodies[i]);
                         }
-                        const Aabb now = shapeBounds(*body.shape, body.now);
-                        const Aabb next = shapeBounds(*body.shape, body.next);
-                        const Real grow = body.dynamic ? body.margin : 0.0;
-                        m_bounds[i] = {now.lower.cwiseMin(next.lower).array() - grow,
-                                       now.upper.cwiseMax(next.upper).array() + grow};
                     });
+    m_moved.clear();
+    m_movedMark.assign(bodies.size(), 0);
     m_dynamic.clear();
     m_static.clear();
     m_planes.clear();
@@ -91,39 +87,169 @@ void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int thread
         }
     }
 
-    pairDynamicBodies(pairs);
-
-    // static boxes: against every dynamic body
-    for (const std::uint32_t s : m_static)
+    m_grid = pairByCells(m_dynamic, m_entries, pairs);
+    m_columns.clear();
+    const auto fits = [](std::int64_t c) { return c >= 0 && c <= std::int64_t{UINT32_MAX}; };
+    const bool indexed = std::all_of(m_entries.begin(), m_entries.end(),
+                                     [&](const CellEntry& e) { return fits(e.cell[0]) && fits(e.cell[1]); });
+    for (std::uint32_t e = 0; indexed && e < m_entries.size(); ++e)
     {
-        for (const std::uint32_t d : m_dynamic)
+        const auto& cell = m_entries[e].cell;
+        const std::uint64_t key = static_cast<std::uint64_t>(cell[0]) << 32 | static_cast<std::uint64_t>(cell[1]);
+        if (m_columns.empty() || m_columns.back().first != key)
         {
-            if (overlap(m_bounds[s], m_bounds[d]))
-            {
-                pairs.push_back({std::min(s, d), std::max(s, d)});
-            }
+            m_columns.push_back({key, e});
         }
     }
+    for (const std::uint32_t d : m_dynamic)
+    {
+        pairWithStatic(bodies, d, pairs);
+    }
 
-    // planes: every dynamic body whose bounding sphere comes within its margin at either pose
+    sortByBodies(pairs, bodies.size());
+}
+
+Aabb BroadPhase::boxOf(const BroadPhaseBody& body) const
+{
+    const Aabb now = shapeBounds(*body.shape, body.now);
+    const Aabb next = shapeBounds(*body.shape, body.next);
+    const Real grow = body.dynamic ? body.margin : 0.0;
+    return {now.lower.cwiseMin(next.lower).array() - grow, now.upper.cwiseMax(next.upper).array() + grow};
+}
+
+std::array<std::int64_t, 3> BroadPhase::Grid::cellOf(const Vec3& p) const
+{
+    return {cellCoordinate(p.x(), origin.x(), inverseCell), cellCoordinate(p.y(), origin.y(), inverseCell),
+            cellCoordinate(p.z(), origin.z(), inverseCell)};
+}
+
+void BroadPhase::pairWithStatic(const std::vector<BroadPhaseBody>& bodies, std::uint32_t i,
+                                std::vector<BodyPair>& pairs) const
+{
+    // static boxes: by their boxes; there are few, so every one is looked at
+    for (const std::uint32_t s : m_static)
+    {
+        if (overlap(m_bounds[s], m_bounds[i]))
+        {
+            pairs.push_back({std::min(s, i), std::max(s, i)});
+        }
+    }
+    // planes: where the body's bounding sphere comes within its margin of one at either pose
+    const BroadPhaseBody& body = bodies[i];
     for (const std::uint32_t p : m_planes)
     {
         const Plane& plane = std::get<Plane>(*bodies[p].shape);
         const Pose& planePose = bodies[p].now;
         const Vec3 normal = planePose.rotation * plane.normal;
         const Real offset = plane.offset + normal.dot(planePose.position);
-        for (const std::uint32_t i : m_dynamic)
+        const Real nearest = std::min(normal.dot(body.now.position), normal.dot(body.next.position)) - offset;
+        if (nearest - body.boundingRadius <= body.margin)
         {
-            const BroadPhaseBody& body = bodies[i];
-            const Real nearest = std::min(normal.dot(body.now.position), normal.dot(body.next.position)) - offset;
-            if (nearest - body.boundingRadius <= body.margin)
+            pairs.push_back({std::min(i, p), std::max(i, p)});
+        }
+    }
+}
+
+void BroadPhase::findPairsOf(const std::vector<BroadPhaseBody>& bodies, const std::vector<std::uint32_t>& moved,
+                             std::vector<BodyPair>& added)
+{
+    added.clear();
+    constexpr std::uint8_t kMovedBefore = 1;
+    constexpr std::uint8_t kMovingNow = 2;
+    for (const std::uint32_t i : moved)
+    {
+        if (!bodies[i].present || !bodies[i].dynamic || std::holds_alternative<Plane>(*bodies[i].shape) ||
+            (m_movedMark[i] & kMovingNow) != 0)
+        {
+            continue;
+        }
+        m_bounds[i] = boxOf(bodies[i]);
+        if (m_movedMark[i] == 0)
+        {
+            m_moved.push_back(i);
+        }
+        m_movedMark[i] |= kMovingNow;
+    }
+
+    // with the bodies that kept their boxes: the grid of findPairs holds those boxes as they are. One
+    // that overlaps a moved box has its lower corner at most a cell (the largest box of then) below the
+    // moved box's lower corner, and not above its upper corner: the columns of that range are searched
+    // in the sorted cells, or, for a box spanning many, every entry is.
+    constexpr std::int64_t kMostColumns = 16;
+    for (const std::uint32_t i : m_moved)
+    {
+        if ((m_movedMark[i] & kMovingNow) == 0)
+        {
+            continue;
+        }
+        const Aabb& box = m_bounds[i];
+        const auto report = [&](const CellEntry& entry)
+        {
+            if (m_movedMark[entry.body] == 0 && overlap(box, entry.box))
             {
-                pairs.push_back({std::min(i, p), std::max(i, p)});
+                added.push_back({std::min(i, entry.body), std::max(i, entry.body)});
+            }
+        };
+        auto low = m_grid.cellOf(box.lower);
+        const auto high = m_grid.cellOf(box.upper);
+        for (std::int64_t& c : low)
+        {
+            --c;
+        }
+        const std::int64_t columnsX = high[0] - low[0] + 1;
+        const std::int64_t columnsY = high[1] - low[1] + 1;
+        const bool finite = box.lower.allFinite() && box.upper.allFinite();
+        if (!finite || m_columns.empty() || columnsX > kMostColumns || columnsY > kMostColumns ||
+            columnsX * columnsY > kMostColumns)
+        {
+            for (const CellEntry& entry : m_entries)
+            {
+                report(entry);
+            }
+            continue;
+        }
+        for (std::int64_t x = std::max<std::int64_t>(low[0], 0); x <= high[0]; ++x)
+        {
+            for (std::int64_t y = std::max<std::int64_t>(low[1], 0); y <= high[1]; ++y)
+            {
+                const std::uint64_t key = static_cast<std::uint64_t>(x) << 32 | static_cast<std::uint64_t>(y);
+                const auto column = std::lower_bound(m_columns.begin(), m_columns.end(), std::pair{key, 0U});
+                if (column == m_columns.end() || column->first != key)
+                {
+                    continue;
+                }
+                // the column's run, from its first cell at height low[2] or above
+                const auto end = std::next(column) == m_columns.end() ? m_entries.end()
+                                                                      : m_entries.begin() + std::next(column)->second;
+                auto e = std::lower_bound(m_entries.begin() + column->second, end, low[2],
+                                          [](const CellEntry& entry, std::int64_t z) { return entry.cell[2] < z; });
+                for (; e != end && e->cell[2] <= high[2]; ++e)
+                {
+                    report(*e);
+                }
             }
         }
     }
-
-    sortByBodies(pairs, bodies.size());
+    // among the moved bodies, of this call and of earlier ones: a grid of their own
+    std::vector<BodyPair> among;
+    pairByCells(m_moved, m_movedEntries, among);
+    for (const BodyPair& pair : among)
+    {
+        if (((m_movedMark[pair.a] | m_movedMark[pair.b]) & kMovingNow) != 0)
+        {
+            added.push_back(pair);
+        }
+    }
+    for (const std::uint32_t i : m_moved)
+    {
+        if ((m_movedMark[i] & kMovingNow) != 0)
+        {
+            pairWithStatic(bodies, i, added);
+            m_movedMark[i] = kMovedBefore;
+        }
+    }
+    std::sort(added.begin(), added.end(),
+              [](const BodyPair& l, const BodyPair& r) { return std::tie(l.a, l.b) < std::tie(r.a, r.b); });
 }
 
 void BroadPhase::sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCount)
@@ -161,18 +287,21 @@ void BroadPhase::sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCoun
     }
 }
 
-void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
+BroadPhase::Grid BroadPhase::pairByCells(const std::vector<std::uint32_t>& members, std::vector<CellEntry>& entries,
+                                         std::vector<BodyPair>& pairs)
 {
-    if (m_dynamic.size() < 2)
+    entries.clear();
+    Grid grid;
+    if (members.size() < 2)
     {
-        return;
+        return grid;
     }
     Real cellSize = 0.0;
-    Vec3 origin = m_bounds[m_dynamic[0]].lower;
-    for (const std::uint32_t d : m_dynamic)
+    grid.origin = m_bounds[members[0]].lower;
+    for (const std::uint32_t d : members)
     {
         cellSize = std::max(cellSize, (m_bounds[d].upper - m_bounds[d].lower).maxCoeff());
-        origin = origin.cwiseMin(m_bounds[d].lower);
+        grid.origin = grid.origin.cwiseMin(m_bounds[d].lower);
     }
     if (!(cellSize > 0.0) || !std::isfinite(cellSize))
     {
@@ -181,13 +310,7 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     // a little larger than the largest box, so that round-off in the cell coordinates never puts
     // the lower corners of two touching boxes two cells apart
     cellSize *= 1.0 + 1e-6;
-    const Real inverse = 1.0 / cellSize;
-    const auto cellOf = [&](const Vec3& p)
-    {
-        return std::array<std::int64_t, 3>{cellCoordinate(p.x(), origin.x(), inverse),
-                                           cellCoordinate(p.y(), origin.y(), inverse),
-                                           cellCoordinate(p.z(), origin.z(), inverse)};
-    };
+    grid.inverseCell = 1.0 / cellSize;
 
     // Each box goes into the one cell that holds its lower corner. A box spans at most a cell per
     // axis, so two boxes that overlap have lower corners in the same or in neighbouring cells. The
@@ -203,20 +326,19 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     // (key, body) records instead of whole entries. Otherwise the entries are sorted as they are.
     constexpr std::int64_t kKeyBits = 21;
     bool packable = true;
-    m_entries.clear();
-    for (const std::uint32_t d : m_dynamic)
+    for (const std::uint32_t d : members)
     {
-        const auto cell = cellOf(m_bounds[d].lower);
+        const auto cell = grid.cellOf(m_bounds[d].lower);
         packable = packable && std::all_of(cell.begin(), cell.end(),
                                            [](std::int64_t c) { return c >= 0 && c < (std::int64_t{1} << kKeyBits); });
-        m_entries.push_back({cell, d, m_bounds[d]});
+        entries.push_back({cell, d, m_bounds[d]});
     }
     if (packable)
     {
         m_keys.clear();
-        for (std::uint32_t e = 0; e < m_entries.size(); ++e)
+        for (std::uint32_t e = 0; e < entries.size(); ++e)
         {
-            const auto& cell = m_entries[e].cell;
+            const auto& cell = entries[e].cell;
             const auto key = static_cast<std::uint64_t>(cell[0] << (2 * kKeyBits) | cell[1] << kKeyBits | cell[2]);
             m_keys.push_back({key, e}); // entries are in body order, so e orders ties by body
         }
@@ -224,13 +346,13 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
         m_sorted.clear();
         for (const auto& [key, e] : m_keys)
         {
-            m_sorted.push_back(m_entries[e]);
+            m_sorted.push_back(entries[e]);
         }
-        m_entries.swap(m_sorted);
+        entries.swap(m_sorted);
     }
     else
     {
-        std::sort(m_entries.begin(), m_entries.end(),
+        std::sort(entries.begin(), entries.end(),
                   [](const CellEntry& l, const CellEntry& r) {
                       return std::tie(l.cell[0], l.cell[1], l.cell[2], l.body) <
                              std::tie(r.cell[0], r.cell[1], r.cell[2], r.body);
@@ -250,30 +372,31 @@ void BroadPhase::pairDynamicBodies(std::vector<BodyPair>& pairs)
     { return std::tie(e.cell[0], e.cell[1], e.cell[2]) < std::tie(x, y, z); };
     static constexpr std::array<std::array<std::int64_t, 2>, 4> kColumnsAhead{{{0, 1}, {1, -1}, {1, 0}, {1, 1}}};
     std::array<std::size_t, 4> cursor{};
-    const std::size_t count = m_entries.size();
+    const std::size_t count = entries.size();
     for (std::size_t e = 0; e < count; ++e)
     {
-        const CellEntry& first = m_entries[e];
+        const CellEntry& first = entries[e];
         const auto& [x, y, z] = first.cell;
-        for (std::size_t f = e + 1; f < count && atMost(m_entries[f], x, y, z + 1); ++f)
+        for (std::size_t f = e + 1; f < count && atMost(entries[f], x, y, z + 1); ++f)
         {
-            report(first, m_entries[f]);
+            report(first, entries[f]);
         }
         for (std::size_t c = 0; c < kColumnsAhead.size(); ++c)
         {
             const std::int64_t cx = x + kColumnsAhead[c][0];
             const std::int64_t cy = y + kColumnsAhead[c][1];
             std::size_t& f = cursor[c];
-            while (f < count && before(m_entries[f], cx, cy, z - 1))
+            while (f < count && before(entries[f], cx, cy, z - 1))
             {
                 ++f;
             }
-            for (std::size_t g = f; g < count && atMost(m_entries[g], cx, cy, z + 1); ++g)
+            for (std::size_t g = f; g < count && atMost(entries[g], cx, cy, z + 1); ++g)
             {
-                report(first, m_entries[g]);
+                report(first, entries[g]);
             }
         }
     }
+    return grid;
 }
 
 } // namespace impulse

@@ -57,7 +57,15 @@ class BroadPhase
     /// Fills `pairs` for the bodies; bounds are computed on `threads` threads.
     void findPairs(const std::vector<BroadPhaseBody>& bodies, int threads, std::vector<BodyPair>& pairs);
 
-    /// The box of body i in the last findPairs (meaningless for planes).
+    /// After findPairs, when the dynamic bodies `moved` have new boxes (`bodies` as findPairs saw
+    /// them but for these): fills `added` with every pair of a moved body whose new box overlaps the
+    /// current box of another body, sorted by (a, b), the pairs it was already in among them. The
+    /// other bodies' boxes are those of the last findPairs, or of the findPairsOf that last moved
+    /// them. Costs what the moved bodies' neighbourhoods hold, not what the world does.
+    void findPairsOf(const std::vector<BroadPhaseBody>& bodies, const std::vector<std::uint32_t>& moved,
+                     std::vector<BodyPair>& added);
+
+    /// The box of body i in the last findPairs or findPairsOf (meaningless for planes).
     const Aabb& bounds(std::size_t i) const { return m_bounds[i]; }
 
   private:
@@ -67,7 +75,20 @@ class BroadPhase
         std::uint32_t body = 0;
         Aabb box; ///< a copy, so that the pass over the sorted cells reads nothing else
     };
-    void pairDynamicBodies(std::vector<BodyPair>& pairs);
+    /// A grid: its cells are cubes of 1 / inverseCell a side, counted from origin.
+    struct Grid
+    {
+        Vec3 origin = Vec3::Zero();
+        Real inverseCell = 1.0;
+        std::array<std::int64_t, 3> cellOf(const Vec3& p) const;
+    };
+    Aabb boxOf(const BroadPhaseBody& body) const;
+    /// Every overlapping pair of `members` (by m_bounds), by the sorted cells of a grid whose cell is
+    /// the largest member box; leaves `entries` sorted by cell and returns the grid.
+    Grid pairByCells(const std::vector<std::uint32_t>& members, std::vector<CellEntry>& entries,
+                     std::vector<BodyPair>& pairs);
+    /// The static boxes and planes that body i (dynamic) comes near.
+    void pairWithStatic(const std::vector<BroadPhaseBody>& bodies, std::uint32_t i, std::vector<BodyPair>& pairs) const;
     /// Sorts pairs by (a, b), indices below `bodyCount`, in linear time.
     void sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCount);
 
@@ -79,6 +100,13 @@ class BroadPhase
     std::vector<CellEntry> m_sorted;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> m_keys; ///< (cell key, entry)
     std::vector<BodyPair> m_pairBuffer;
+    Grid m_grid; ///< the grid of m_entries, the last findPairs's
+    /// Where each column (x, y) of m_entries begins: (x << 32 | y, first entry), in order; empty where
+    /// a cell coordinate does not fit in 32 bits
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> m_columns;
+    std::vector<std::uint32_t> m_moved;    ///< dynamic bodies whose box changed since findPairs
+    std::vector<std::uint8_t> m_movedMark; ///< per body: 1 in m_moved, 2 in the findPairsOf call's list
+    std::vector<CellEntry> m_movedEntries;
 };
 
 /// Box that contains the shape placed at `pose` (meaningless for planes).

@@ -306,13 +306,22 @@ int solveRows(std::span<ContactRow> rows, std::span<SolverBody> bodies, const Ro
         {
             start[i] = bodies[moved[i]];
         }
+        // the sweep, summing the squared change of the impulses on the way (for the step below)
+        Real squared = 0.0;
         for (std::size_t r = 0; r < rows.size(); ++r)
         {
-            if (accelerate)
+            if (!accelerate)
             {
-                before[r] = rows[r].lambda;
+                solveRow(rows[r], bodies, settings);
+                continue;
             }
+            before[r] = rows[r].lambda;
             solveRow(rows[r], bodies, settings);
+            for (std::size_t k = 0; k < 3; ++k)
+            {
+                const Real change = rows[r].lambda[k] - before[r][k];
+                squared += change * change;
+            }
         }
         Real largest = 0.0;
         for (std::size_t i = 0; i < moved.size(); ++i)
@@ -332,15 +341,6 @@ int solveRows(std::span<ContactRow> rows, std::span<SolverBody> bodies, const Ro
         if (sweeps == maxSweeps)
         {
             break; // the last sweep's change is what the next step's iteration starts from
-        }
-        Real squared = 0.0;
-        for (std::size_t r = 0; r < rows.size(); ++r)
-        {
-            for (std::size_t k = 0; k < 3; ++k)
-            {
-                const Real change = rows[r].lambda[k] - before[r][k];
-                squared += change * change;
-            }
         }
         const Real beta = previous > 0.0 ? squared / previous : 0.0;
         previous = squared;

@@ -29,9 +29,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <tuple>
 
 namespace impulse
 {
@@ -236,13 +238,8 @@ void WorldImpl::stepGuendelman(const StepOptions& options)
     // again with room for its new speed, and give the new pairs their collision pass
     for (int again = 0; again < kEscapedBoxPasses && widenEscapedBoxes(options); ++again)
     {
-        const std::vector<BodyPair> before = pairs;
-        findCandidatePairs(options, collision);
-        keepQuietStamps(before);
         ++stats.broadPhaseRepeats;
-        buildIslands();
-        refreshContacts(options, 0.0, false);
-        if (std::find(freshPairs.begin(), freshPairs.end(), 1) == freshPairs.end())
+        if (!pairEscapedBodies(options, collision))
         {
             break; // no new pair: nothing new to resolve, and no body sped up further
         }
@@ -356,7 +353,7 @@ void WorldImpl::keepQuietStamps(const std::vector<BodyPair>& before)
 bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
 {
     // where a body's poses and its own margin at its new velocity no longer fit in its box
-    bool escaped = false;
+    escapedBodies.clear();
     for (std::size_t i = 0; i < bodies.size(); ++i)
     {
         const RigidBody& body = bodies[i];
@@ -373,10 +370,56 @@ bool WorldImpl::widenEscapedBoxes(const StepOptions& options)
         if (!fits)
         {
             broadMargins[i] = std::max(broadMargins[i], margin);
-            escaped = true;
+            escapedBodies.push_back(static_cast<std::uint32_t>(i));
         }
     }
-    return escaped;
+    return !escapedBodies.empty();
+}
+
+bool WorldImpl::pairEscapedBodies(const StepOptions& options, const PassSettings& settings)
+{
+    // Only an escaped body can have a new pair: every other body's motion still lies in its box. So
+    // the escaped bodies' boxes are made anew, at their predicted poses with their grown margins, and
+    // only their neighbourhoods are searched.
+    for (const std::uint32_t i : escapedBodies)
+    {
+        broadBodies[i].next = bodies[i].shapePose(bodies[i].predicted);
+        broadBodies[i].margin = broadMargins[i];
+    }
+    broadPhase.findPairsOf(broadBodies, escapedBodies, addedPairs);
+    const auto byBodies = [](const BodyPair& l, const BodyPair& r) { return std::tie(l.a, l.b) < std::tie(r.a, r.b); };
+    // the new ones (both lists are sorted), of bodies that may collide
+    std::vector<BodyPair> found;
+    found.swap(addedPairs);
+    std::set_difference(found.begin(), found.end(), pairs.begin(), pairs.end(), std::back_inserter(addedPairs),
+                        byBodies);
+    if (filtering)
+    {
+        std::erase_if(addedPairs, [&](const BodyPair& pair) { return !collides(pair.a, pair.b); });
+    }
+    if (addedPairs.empty())
+    {
+        return false;
+    }
+    const std::vector<BodyPair> before = pairs;
+    const bool wakes =
+        std::any_of(addedPairs.begin(), addedPairs.end(),
+                    [&](const BodyPair& pair) { return bodies[pair.a].asleep || bodies[pair.b].asleep; });
+    if (wakes)
+    {
+        findCandidatePairs(options, settings); // a sleeping island woken: its pairs are found with it awake
+    }
+    else
+    {
+        pairs.clear();
+        std::merge(before.begin(), before.end(), addedPairs.begin(), addedPairs.end(), std::back_inserter(pairs),
+                   byBodies);
+        followPairs();
+    }
+    keepQuietStamps(before);
+    buildIslands();
+    refreshContacts(options, 0.0, false);
+    return true;
 }
 
 void WorldImpl::stepTraditional(const StepOptions& options)
@@ -464,6 +507,11 @@ void WorldImpl::findCandidatePairs(const StepOptions& options, const PassSetting
         broadPhase.findPairs(broadBodies, threads, pairs);
         dropFilteredPairs();
     } while (wakeTouched());
+    followPairs();
+}
+
+void WorldImpl::followPairs()
+{
     pairCoefficients.clear();
     for (const BodyPair& pair : pairs)
     {

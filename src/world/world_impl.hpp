@@ -105,9 +105,11 @@ class WorldImpl
     std::vector<PairCoefficients> pairCoefficients; ///< parallel to pairs
     std::vector<int> pairLevels;                    ///< parallel to pairs: max level of the two bodies
     BroadPhase broadPhase;
-    std::vector<BroadPhaseBody> broadBodies; ///< per body: what the broad phase sees
-    std::vector<Real> broadMargins;          ///< per body: how far its box is grown this step
-    std::vector<std::uint8_t> freshPairs;    ///< parallel to pairs: found since the last collision pass
+    std::vector<BroadPhaseBody> broadBodies;  ///< per body: what the broad phase sees
+    std::vector<Real> broadMargins;           ///< per body: how far its box is grown this step
+    std::vector<std::uint8_t> freshPairs;     ///< parallel to pairs: found since the last collision pass
+    std::vector<std::uint32_t> escapedBodies; ///< the bodies widenEscapedBoxes found beyond their boxes
+    std::vector<BodyPair> addedPairs;         ///< pairs of escaped bodies, as the broad phase found them
     std::vector<Island> islands;
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
@@ -154,10 +156,15 @@ class WorldImpl
     void stepTraditional(const StepOptions& options);
 
     void findCandidatePairs(const StepOptions& options, const PassSettings& settings);
+    /// The pairs' coefficients and contact entries made to follow `pairs` after it changed.
+    void followPairs();
     void buildIslands();
     /// After the collision pass: grows the margin of every body whose new velocity takes it beyond its
-    /// box; whether any did.
+    /// box and lists it in escapedBodies; whether any did.
     bool widenEscapedBoxes(const StepOptions& options);
+    /// The pairs the escaped bodies' new boxes add, taken into the pairs, the contact layer and the
+    /// islands; whether there were any.
+    bool pairEscapedBodies(const StepOptions& options, const PassSettings& settings);
     /// After the pairs were found again: the collision pass's quiet stamps follow their pairs.
     void keepQuietStamps(const std::vector<BodyPair>& before);
     /// Makes the contact layer usable at the predicted poses, with `extra` to spare (ContactCache::refresh).

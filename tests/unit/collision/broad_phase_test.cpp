@@ -50,8 +50,10 @@ bool overlap(const Aabb& l, const Aabb& r)
 }
 
 // every pair by the definition: boxes over both poses, each grown by its margin, overlap, at least
-// one body dynamic; planes pair with dynamic bodies whose bounding sphere comes within their margin
-std::vector<std::pair<std::uint32_t, std::uint32_t>> allPairs(const std::vector<Proxy>& bodies)
+// one body dynamic; planes pair with dynamic bodies whose bounding sphere comes within their margin.
+// With `of`, only the pairs with a body it marks.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> allPairs(const std::vector<Proxy>& bodies,
+                                                              const std::vector<bool>& of = {})
 {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     const auto grown = [&](const Proxy& body)
@@ -67,7 +69,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> allPairs(const std::vector<
         {
             const Proxy& a = bodies[i];
             const Proxy& b = bodies[j];
-            if (!a.dynamic && !b.dynamic)
+            if ((!a.dynamic && !b.dynamic) || (!of.empty() && !of[i] && !of[j]))
             {
                 continue;
             }
@@ -92,33 +94,39 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> allPairs(const std::vector<
     return pairs;
 }
 
+// A wall and a plane, and 300 bodies: mostly small in a 3 m cube, some ten times larger, a few far
+// away (in odd trials so far that the cells count past what the broad phase packs into one sort key),
+// each with a margin of its own (a few much larger than the rest: a fast body among slow ones).
+std::vector<Proxy> randomScene(std::mt19937_64& random, int trial)
+{
+    std::uniform_real_distribution<Real> unit(0.0, 1.0);
+    std::vector<Proxy> bodies;
+    bodies.push_back(makeBody(Plane{}, Vec3::Zero(), Quat::Identity(), false));
+    bodies.push_back(makeBody(Box{Vec3(0.1, 2.0, 1.0)}, Vec3(2.1, 0, 1), Quat::Identity(), false)); // a wall
+    for (int k = 0; k < 300; ++k)
+    {
+        const Real size = unit(random) < 0.1 ? 0.5 + unit(random) : 0.02 + 0.1 * unit(random);
+        Vec3 position(3.0 * unit(random) - 1.0, 3.0 * unit(random) - 1.5, 3.0 * unit(random));
+        if (k % 50 == 0)
+        {
+            position *= trial % 2 == 0 ? 1e4 : 1e8;
+        }
+        const Quat orientation = Quat(Eigen::Vector4d::Random()).normalized();
+        const Shape shape = k % 2 == 0 ? Shape{Sphere{size}} : Shape{Box{Vec3(size, 0.5 * size, 0.3 * size)}};
+        const Real margin = unit(random) < 0.05 ? 0.2 * unit(random) : 0.01 * unit(random);
+        Proxy body = makeBody(shape, position, orientation, true, margin);
+        body.next.position += Vec3(0.0, 0.0, -0.05 * unit(random)); // moving down this step
+        bodies.push_back(body);
+    }
+    return bodies;
+}
+
 TEST(BroadPhase, FindsExactlyThePairsWhoseBoxesOverlap)
 {
     std::mt19937_64 random(7);
-    std::uniform_real_distribution<Real> unit(0.0, 1.0);
     for (int trial = 0; trial < 20; ++trial)
     {
-        std::vector<Proxy> bodies;
-        bodies.push_back(makeBody(Plane{}, Vec3::Zero(), Quat::Identity(), false));
-        bodies.push_back(makeBody(Box{Vec3(0.1, 2.0, 1.0)}, Vec3(2.1, 0, 1), Quat::Identity(), false)); // a wall
-        for (int k = 0; k < 300; ++k)
-        {
-            // mostly small bodies in a 3 m cube, some ten times larger, a few far away (in odd trials
-            // so far that the cells count past what the broad phase packs into one sort key)
-            const Real size = unit(random) < 0.1 ? 0.5 + unit(random) : 0.02 + 0.1 * unit(random);
-            Vec3 position(3.0 * unit(random) - 1.0, 3.0 * unit(random) - 1.5, 3.0 * unit(random));
-            if (k % 50 == 0)
-            {
-                position *= trial % 2 == 0 ? 1e4 : 1e8;
-            }
-            const Quat orientation = Quat(Eigen::Vector4d::Random()).normalized();
-            const Shape shape = k % 2 == 0 ? Shape{Sphere{size}} : Shape{Box{Vec3(size, 0.5 * size, 0.3 * size)}};
-            // margins of their own, a few much larger than the rest (a fast body among slow ones)
-            const Real margin = unit(random) < 0.05 ? 0.2 * unit(random) : 0.01 * unit(random);
-            Proxy body = makeBody(shape, position, orientation, true, margin);
-            body.next.position += Vec3(0.0, 0.0, -0.05 * unit(random)); // moving down this step
-            bodies.push_back(body);
-        }
+        const std::vector<Proxy> bodies = randomScene(random, trial);
         BroadPhase broadPhase;
         std::vector<BodyPair> found;
         broadPhase.findPairs(asSeen(bodies), 1, found);
@@ -142,6 +150,50 @@ TEST(BroadPhase, FindsExactlyThePairsWhoseBoxesOverlap)
             EXPECT_EQ(threaded[n].b, found[n].b) << "trial " << trial << ", pair " << n;
         }
     }
+}
+
+TEST(BroadPhase, FindsThePairsOfMovedBodiesAsAComparisonOfAllPairsDoes)
+{
+    // After findPairs, rounds of bodies sped up (a new pose ahead, a larger margin, some far beyond
+    // the grid's cells): findPairsOf must give every pair of a body moved in the round, against the
+    // boxes every body has now, including the bodies moved in earlier rounds.
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<Real> unit(0.0, 1.0);
+    int checked = 0;
+    for (int trial = 0; trial < 10; ++trial)
+    {
+        std::vector<Proxy> bodies = randomScene(random, trial);
+        BroadPhase broadPhase;
+        std::vector<BodyPair> found;
+        broadPhase.findPairs(asSeen(bodies), 1, found);
+        for (int round = 0; round < 3; ++round)
+        {
+            std::vector<std::uint32_t> moved;
+            std::vector<bool> isMoved(bodies.size(), false);
+            for (std::uint32_t i = 2; i < bodies.size(); ++i)
+            {
+                if (unit(random) < 0.15)
+                {
+                    const Real reach = unit(random) < 0.1 ? 3.0 : 0.3;
+                    bodies[i].next.position += reach * Vec3(unit(random) - 0.5, unit(random) - 0.5, -unit(random));
+                    bodies[i].margin += 0.05 * unit(random);
+                    moved.push_back(i);
+                    isMoved[i] = true;
+                }
+            }
+            std::vector<BodyPair> added;
+            broadPhase.findPairsOf(asSeen(bodies), moved, added);
+            const auto expected = allPairs(bodies, isMoved);
+            ASSERT_EQ(added.size(), expected.size()) << "trial " << trial << ", round " << round;
+            for (std::size_t n = 0; n < added.size(); ++n)
+            {
+                EXPECT_EQ(added[n].a, expected[n].first) << "trial " << trial << ", round " << round;
+                EXPECT_EQ(added[n].b, expected[n].second) << "trial " << trial << ", round " << round;
+            }
+            checked += static_cast<int>(expected.size());
+        }
+    }
+    EXPECT_GT(checked, 1000) << "too few pairs to say anything";
 }
 
 TEST(BroadPhase, BoxesOfTheLargestSizeThatJustTouchArePaired)
