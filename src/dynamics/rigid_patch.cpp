@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -175,7 +176,8 @@ bool solveRigidPatch(std::span<ContactRow* const> rows, std::span<SolverBody> bo
     const Mat3 vectors = eigen.eigenvectors();
     const Real cut = 1e-9 * std::max(values.maxCoeff(), Real(0.0));
     Mat3 pseudoInverse = Mat3::Zero();
-    std::vector<Vec3> free; // rotations the points cannot resist
+    std::array<Vec3, 3> free; // rotations the points cannot resist, the first `freeCount`
+    std::size_t freeCount = 0;
     for (int i = 0; i < 3; ++i)
     {
         if (values[i] > cut && values[i] > 0.0)
@@ -184,7 +186,7 @@ bool solveRigidPatch(std::span<ContactRow* const> rows, std::span<SolverBody> bo
         }
         else
         {
-            free.push_back(vectors.col(i));
+            free[freeCount++] = vectors.col(i);
         }
     }
     Vec6 twist;
@@ -211,11 +213,12 @@ bool solveRigidPatch(std::span<ContactRow* const> rows, std::span<SolverBody> bo
     {
         return false;
     }
-    if (!free.empty())
+    if (freeCount > 0)
     {
         // twist + N alpha with N^T K^-1 (twist + N alpha) = 0
-        Eigen::Matrix<Real, 6, Eigen::Dynamic> basis = Eigen::Matrix<Real, 6, Eigen::Dynamic>::Zero(6, free.size());
-        for (std::size_t i = 0; i < free.size(); ++i)
+        Eigen::Matrix<Real, 6, Eigen::Dynamic> basis =
+            Eigen::Matrix<Real, 6, Eigen::Dynamic>::Zero(6, static_cast<Eigen::Index>(freeCount));
+        for (std::size_t i = 0; i < freeCount; ++i)
         {
             basis.block<3, 1>(3, static_cast<Eigen::Index>(i)) = free[i];
         }

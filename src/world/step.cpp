@@ -1174,24 +1174,28 @@ void WorldImpl::propagateShock(const StepOptions& options, const PassSettings& s
 void WorldImpl::storeContactResults()
 {
     // what each point carried, for World::contacts(), in pair order: the islands hold their rows by
-    // level, so they are gathered per pair first
-    lastContacts.clear();
-    for (const Island& island : islands)
+    // level, so the rows carrying load are listed by (pair, order met) and then gathered in that order
+    contactOrder.clear();
+    for (std::uint32_t i = 0; i < islands.size(); ++i)
     {
-        for (const ContactRow& row : island.rows)
+        const std::vector<ContactRow>& rows = islands[i].rows;
+        for (std::uint32_t r = 0; r < rows.size(); ++r)
         {
-            if (row.lambda[0] > 0.0)
+            if (rows[r].lambda[0] > 0.0)
             {
-                const std::uint32_t a = row.a;
-                const std::uint32_t b = row.b;
-                lastContacts.push_back({BodyId{a}, BodyId{b}, row.point, row.direction[0], row.gap, row.lambda[0],
-                                        row.lambda[1] * row.direction[1] + row.lambda[2] * row.direction[2]});
+                const std::uint64_t pair = std::uint64_t{rows[r].a} << 32 | rows[r].b;
+                contactOrder.push_back({pair, std::uint64_t{i} << 32 | r});
             }
         }
     }
-    std::stable_sort(lastContacts.begin(), lastContacts.end(),
-                     [](const Contact& l, const Contact& r)
-                     { return std::make_pair(l.a.index, l.b.index) < std::make_pair(r.a.index, r.b.index); });
+    std::sort(contactOrder.begin(), contactOrder.end());
+    lastContacts.clear();
+    for (const auto& [pair, where] : contactOrder)
+    {
+        const ContactRow& row = islands[where >> 32].rows[where & 0xffffffffU];
+        lastContacts.push_back({BodyId{row.a}, BodyId{row.b}, row.point, row.direction[0], row.gap, row.lambda[0],
+                                row.lambda[1] * row.direction[1] + row.lambda[2] * row.direction[2]});
+    }
     // the bodies take the solved velocities
     parallelFor(threads, islands.size(),
                 [&](std::size_t i, int)

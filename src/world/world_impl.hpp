@@ -97,6 +97,8 @@ class WorldImpl
     Real time = 0.0;
     StepStats stats;
     std::vector<Contact> lastContacts; ///< what the contact points carried in the last step
+    /// storeContactResults's sort: (a << 32 | b, island << 32 | row) of each row carrying load
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> contactOrder;
     /// The contact layer: every candidate pair's points and loads, kept from step to step.
     ContactCache contacts;
 
