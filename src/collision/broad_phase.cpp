@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <tuple>
 
 namespace impulse
@@ -154,6 +155,10 @@ void BroadPhase::findPairsOf(const std::vector<BroadPhaseBody>& bodies, const st
                              std::vector<BodyPair>& added)
 {
     added.clear();
+    if (m_movedMark.size() != bodies.size())
+    {
+        throw std::logic_error("BroadPhase::findPairsOf: the bodies are not those of the last findPairs");
+    }
     constexpr std::uint8_t kMovedBefore = 1;
     constexpr std::uint8_t kMovingNow = 2;
     for (const std::uint32_t i : moved)
