@@ -111,6 +111,40 @@ TEST(Conservation, ASpinningCubeStrikingAnotherOffCentreKeepsLinearAndAngularMom
         << "change " << c.angularChange.transpose() << " of scale " << c.angularScale;
 }
 
+TEST(Conservation, ABallStruckPastItsBoxStrikesTheBallBeyondInTheSameStep)
+{
+    // Three equal balls in a row, 5 mm apart, the first at 10 m/s: Newton's cradle with gaps. The two
+    // at rest have boxes no larger than themselves, so no pair joins them when the step begins. The
+    // first hit sends the middle ball at 10 m/s, 10 mm in the step, through the 5 mm gap: it must be
+    // paired with the last one within the step and pass the blow on before any position is updated,
+    // which leaves the first two at rest and the last at 10 m/s. (Missed, the last would not move and
+    // the middle one would end the step 5 mm inside it.)
+    World world(WorldDef{.gravity = Vec3::Zero()});
+    const MaterialId elastic = world.createMaterial({.restitution = 1.0, .friction = 0.0});
+    const Real r = 0.1;
+    const Real speed = 10.0;
+    const BodyId first = world.createBody({.shape = Sphere{r},
+                                           .material = elastic,
+                                           .mass = 1.0,
+                                           .position = Vec3(-2.0 * r - 0.005, 0.0, 0.0),
+                                           .linearVelocity = Vec3(speed, 0.0, 0.0)});
+    const BodyId middle = world.createBody({.shape = Sphere{r}, .material = elastic, .mass = 1.0});
+    const BodyId last = world.createBody(
+        {.shape = Sphere{r}, .material = elastic, .mass = 1.0, .position = Vec3(2.0 * r + 0.005, 0.0, 0.0)});
+
+    StepOptions options;
+    options.dt = kDt;
+    world.step(options);
+
+    EXPECT_GE(world.lastStepStats().broadPhaseRepeats, 1) << "the premise: the middle ball left its box";
+    // the velocities of the cradle to round-off (a few ulps of the speed)
+    EXPECT_NEAR(world.state(first).linearVelocity.norm(), 0.0, 1e-12 * speed);
+    EXPECT_NEAR(world.state(middle).linearVelocity.norm(), 0.0, 1e-12 * speed);
+    EXPECT_NEAR(world.state(last).linearVelocity.x(), speed, 1e-12 * speed);
+    const Real gap = (world.state(last).position - world.state(middle).position).norm() - 2.0 * r;
+    EXPECT_GT(gap, -0.01 * r) << "the middle ball ends the step inside the last";
+}
+
 Shape randomShape(std::mt19937_64& random, int kind, Real size)
 {
     std::uniform_real_distribution<Real> aspect(0.5, 1.5);
