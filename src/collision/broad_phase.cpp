@@ -89,19 +89,7 @@ void BroadPhase::findPairs(const std::vector<BroadPhaseBody>& bodies, int thread
     }
 
     m_grid = pairByCells(m_dynamic, m_entries, pairs);
-    m_columns.clear();
-    const auto fits = [](std::int64_t c) { return c >= 0 && c <= std::int64_t{UINT32_MAX}; };
-    const bool indexed = std::all_of(m_entries.begin(), m_entries.end(),
-                                     [&](const CellEntry& e) { return fits(e.cell[0]) && fits(e.cell[1]); });
-    for (std::uint32_t e = 0; indexed && e < m_entries.size(); ++e)
-    {
-        const auto& cell = m_entries[e].cell;
-        const std::uint64_t key = static_cast<std::uint64_t>(cell[0]) << 32 | static_cast<std::uint64_t>(cell[1]);
-        if (m_columns.empty() || m_columns.back().first != key)
-        {
-            m_columns.push_back({key, e});
-        }
-    }
+    m_columnsListed = false;
     for (const std::uint32_t d : m_dynamic)
     {
         pairWithStatic(bodies, d, pairs);
@@ -151,6 +139,24 @@ void BroadPhase::pairWithStatic(const std::vector<BroadPhaseBody>& bodies, std::
     }
 }
 
+void BroadPhase::listColumns()
+{
+    m_columns.clear();
+    const auto fits = [](std::int64_t c) { return c >= 0 && c <= std::int64_t{UINT32_MAX}; };
+    const bool indexed = std::all_of(m_entries.begin(), m_entries.end(),
+                                     [&](const CellEntry& e) { return fits(e.cell[0]) && fits(e.cell[1]); });
+    for (std::uint32_t e = 0; indexed && e < m_entries.size(); ++e)
+    {
+        const auto& cell = m_entries[e].cell;
+        const std::uint64_t key = static_cast<std::uint64_t>(cell[0]) << 32 | static_cast<std::uint64_t>(cell[1]);
+        if (m_columns.empty() || m_columns.back().first != key)
+        {
+            m_columns.push_back({key, e});
+        }
+    }
+    m_columnsListed = true;
+}
+
 void BroadPhase::findPairsOf(const std::vector<BroadPhaseBody>& bodies, const std::vector<std::uint32_t>& moved,
                              std::vector<BodyPair>& added)
 {
@@ -158,6 +164,10 @@ void BroadPhase::findPairsOf(const std::vector<BroadPhaseBody>& bodies, const st
     if (m_movedMark.size() != bodies.size())
     {
         throw std::logic_error("BroadPhase::findPairsOf: the bodies are not those of the last findPairs");
+    }
+    if (!m_columnsListed)
+    {
+        listColumns();
     }
     constexpr std::uint8_t kMovedBefore = 1;
     constexpr std::uint8_t kMovingNow = 2;
@@ -253,8 +263,7 @@ void BroadPhase::findPairsOf(const std::vector<BroadPhaseBody>& bodies, const st
             m_movedMark[i] = kMovedBefore;
         }
     }
-    std::sort(added.begin(), added.end(),
-              [](const BodyPair& l, const BodyPair& r) { return std::tie(l.a, l.b) < std::tie(r.a, r.b); });
+    std::sort(added.begin(), added.end());
 }
 
 void BroadPhase::sortByBodies(std::vector<BodyPair>& pairs, std::size_t bodyCount)

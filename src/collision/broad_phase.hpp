@@ -30,6 +30,9 @@ struct BodyPair
 {
     std::uint32_t a = 0;
     std::uint32_t b = 0;
+
+    /// The order pair lists are kept in: by a, then b.
+    friend bool operator<(const BodyPair& l, const BodyPair& r) { return l.a < r.a || (l.a == r.a && l.b < r.b); }
 };
 
 /// Axis-aligned box in world space.
@@ -87,6 +90,8 @@ class BroadPhase
     /// the largest member box; leaves `entries` sorted by cell and returns the grid.
     Grid pairByCells(const std::vector<std::uint32_t>& members, std::vector<CellEntry>& entries,
                      std::vector<BodyPair>& pairs);
+    /// Fills m_columns from m_entries.
+    void listColumns();
     /// The static boxes and planes that body i (dynamic) comes near.
     void pairWithStatic(const std::vector<BroadPhaseBody>& bodies, std::uint32_t i, std::vector<BodyPair>& pairs) const;
     /// Sorts pairs by (a, b), indices below `bodyCount`, in linear time.
@@ -104,6 +109,7 @@ class BroadPhase
     /// Where each column (x, y) of m_entries begins: (x << 32 | y, first entry), in order; empty where
     /// a cell coordinate does not fit in 32 bits
     std::vector<std::pair<std::uint64_t, std::uint32_t>> m_columns;
+    bool m_columnsListed = false;          ///< m_columns made for the last findPairs (by its first findPairsOf)
     std::vector<std::uint32_t> m_moved;    ///< dynamic bodies whose box changed since findPairs
     std::vector<std::uint8_t> m_movedMark; ///< per body: 1 in m_moved, 2 in the findPairsOf call's list
     std::vector<CellEntry> m_movedEntries;

@@ -33,7 +33,6 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
-#include <tuple>
 
 namespace impulse
 {
@@ -386,24 +385,22 @@ bool WorldImpl::pairEscapedBodies(const StepOptions& options, const PassSettings
         broadBodies[i].next = bodies[i].shapePose(bodies[i].predicted);
         broadBodies[i].margin = broadMargins[i];
     }
-    broadPhase.findPairsOf(broadBodies, escapedBodies, addedPairs);
-    const auto byBodies = [](const BodyPair& l, const BodyPair& r) { return std::tie(l.a, l.b) < std::tie(r.a, r.b); };
+    broadPhase.findPairsOf(broadBodies, escapedBodies, escapedPairs);
     // the new ones (both lists are sorted), of bodies that may collide
-    std::vector<BodyPair> found;
-    found.swap(addedPairs);
-    std::set_difference(found.begin(), found.end(), pairs.begin(), pairs.end(), std::back_inserter(addedPairs),
-                        byBodies);
+    std::vector<BodyPair> added;
+    std::set_difference(escapedPairs.begin(), escapedPairs.end(), pairs.begin(), pairs.end(),
+                        std::back_inserter(added));
     if (filtering)
     {
-        std::erase_if(addedPairs, [&](const BodyPair& pair) { return !collides(pair.a, pair.b); });
+        std::erase_if(added, [&](const BodyPair& pair) { return !collides(pair.a, pair.b); });
     }
-    if (addedPairs.empty())
+    if (added.empty())
     {
         return false;
     }
     const std::vector<BodyPair> before = pairs;
     const bool wakes =
-        std::any_of(addedPairs.begin(), addedPairs.end(),
+        std::any_of(added.begin(), added.end(),
                     [&](const BodyPair& pair) { return bodies[pair.a].asleep || bodies[pair.b].asleep; });
     if (wakes)
     {
@@ -412,8 +409,7 @@ bool WorldImpl::pairEscapedBodies(const StepOptions& options, const PassSettings
     else
     {
         pairs.clear();
-        std::merge(before.begin(), before.end(), addedPairs.begin(), addedPairs.end(), std::back_inserter(pairs),
-                   byBodies);
+        std::merge(before.begin(), before.end(), added.begin(), added.end(), std::back_inserter(pairs));
         followPairs();
     }
     keepQuietStamps(before);

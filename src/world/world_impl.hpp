@@ -111,7 +111,7 @@ class WorldImpl
     std::vector<Real> broadMargins;           ///< per body: how far its box is grown this step
     std::vector<std::uint8_t> freshPairs;     ///< parallel to pairs: found since the last collision pass
     std::vector<std::uint32_t> escapedBodies; ///< the bodies widenEscapedBoxes found beyond their boxes
-    std::vector<BodyPair> addedPairs;         ///< pairs of escaped bodies, as the broad phase found them
+    std::vector<BodyPair> escapedPairs;       ///< every pair of an escaped body, as the broad phase found them
     std::vector<Island> islands;
     std::vector<SupportEdge> supportEdges; ///< contact graph of this step
     std::vector<std::uint8_t> pairProbes;  ///< parallel to pairs: what the contact graph's probes found
